@@ -1,0 +1,15 @@
+#pragma once
+// Subcommand registration: each add_* registers its options and an action run after parsing.
+#include <CLI/CLI.hpp>
+#include <functional>
+
+namespace palpate::cli {
+
+// Registers `action` to run when `command` was selected on the command line.
+void on_selected(CLI::App* command, std::function<int()> action);
+// Runs the action of the selected subcommand; returns its exit status.
+int run_selected(CLI::App& app);
+
+void add_mesh_command(CLI::App& app);
+
+}  // namespace palpate::cli

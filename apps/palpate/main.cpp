@@ -1,0 +1,26 @@
+// palpate: the command-line front end. Each subcommand lives in its own file and is built only from
+// the library's public API.
+#include <CLI/CLI.hpp>
+#include <cstdio>
+#include <exception>
+
+#include "commands.hpp"
+#include "palpate/core/error.hpp"
+
+int main(int argc, char** argv) {
+  CLI::App app{"palpate: GPU visual deformation for point-based haptic applications"};
+  app.require_subcommand(1);
+  app.set_version_flag("--version", "palpate 0.1.0");
+  palpate::cli::add_mesh_command(app);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    return palpate::cli::run_selected(app);
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "palpate: error: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,106 @@
+// palpate mesh info | convert | phantom
+#include <chrono>
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "commands.hpp"
+#include "palpate/core/load.hpp"
+#include "palpate/core/mesh_topology.hpp"
+#include "palpate/core/phantom.hpp"
+
+namespace palpate::cli {
+namespace {
+
+std::string with_thousands(std::size_t n) {
+  std::string digits = std::to_string(n), out;
+  for (std::size_t i = 0; i < digits.size(); ++i) {
+    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
+    out += digits[i];
+  }
+  return out;
+}
+
+int mesh_info(const std::vector<std::string>& files) {
+  int status = 0;
+  for (const std::string& file : files) {
+    try {
+      const auto start = std::chrono::steady_clock::now();
+      const Scene model = load_model(file);
+      const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      Mesh merged;
+      for (const SceneObject& object : model.objects) append_mesh(merged, object.mesh);
+      const Bounds box = bounds(merged);
+      const MeshTopology topo = analyze_topology(merged);
+      std::printf("%s\n", file.c_str());
+      std::printf("  objects     %zu\n", model.objects.size());
+      std::printf("  vertices    %s\n", with_thousands(merged.vertex_count()).c_str());
+      std::printf("  triangles   %s\n", with_thousands(merged.triangle_count()).c_str());
+      std::printf("  bounds      [%.2f, %.2f, %.2f] .. [%.2f, %.2f, %.2f] (size %.2f x %.2f x %.2f)\n", box.min.x,
+                  box.min.y, box.min.z, box.max.x, box.max.y, box.max.z, box.size().x, box.size().y, box.size().z);
+      std::printf("  closed      %s (%zu boundary edges)\n", topo.closed() ? "yes" : "no", topo.boundary_edges);
+      std::printf("  manifold    %s (%zu non-manifold edges, %zu degenerate triangles)\n",
+                  topo.manifold() ? "yes" : "no", topo.nonmanifold_edges, topo.degenerate_triangles);
+      std::printf("  oriented    %s (%zu misoriented edges)\n", topo.oriented() ? "yes" : "no",
+                  topo.misoriented_edges);
+      std::printf("  components  %zu, Euler characteristic %ld\n", topo.components, topo.euler_characteristic);
+      std::printf("  load time   %.1f ms\n", load_ms);
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "palpate: error: %s\n", e.what());
+      status = 1;
+    }
+  }
+  return status;
+}
+
+}  // namespace
+
+void add_mesh_command(CLI::App& app) {
+  CLI::App* mesh = app.add_subcommand("mesh", "Inspect, convert and generate meshes");
+  mesh->require_subcommand(1);
+
+  auto files = std::make_shared<std::vector<std::string>>();
+  CLI::App* info = mesh->add_subcommand("info", "Objects, vertices, triangles, bounds, topology and load time");
+  info->add_option("files", *files, "Model files (.wrl .wrl.gz .iv .obj .ply .stl .off .gltf .glb)")
+      ->required()
+      ->check(CLI::ExistingFile);
+  on_selected(info, [files] { return mesh_info(*files); });
+
+  auto in = std::make_shared<std::string>(), out = std::make_shared<std::string>();
+  CLI::App* convert = mesh->add_subcommand("convert", "Convert a model to VRML97 (.wrl) or PLY (.ply)");
+  convert->add_option("input", *in, "Model file to read")->required()->check(CLI::ExistingFile);
+  convert->add_option("output", *out, "File to write; the format follows the extension")->required();
+  on_selected(convert, [in, out] {
+    const Mesh mesh = load_mesh(*in);
+    save_mesh(mesh, *out);
+    std::printf("wrote %s: %s vertices, %s triangles\n", out->c_str(), with_thousands(mesh.vertex_count()).c_str(),
+                with_thousands(mesh.triangle_count()).c_str());
+    return 0;
+  });
+
+  struct PhantomOptions {
+    bool brain = false, skin = false;
+    std::size_t vertices = 0;
+    std::string output;
+  };
+  auto opts = std::make_shared<PhantomOptions>();
+  CLI::App* phantom = mesh->add_subcommand("phantom", "Generate the brain or skin phantom (deterministic)");
+  auto* brain_flag = phantom->add_flag("--brain", opts->brain, "Brain: gyri, deep sulci, longitudinal fissure");
+  auto* skin_flag = phantom->add_flag("--skin", opts->skin, "Head-shaped skin that encloses the brain");
+  brain_flag->excludes(skin_flag);
+  phantom->add_option("--vertices", opts->vertices,
+                      "Vertex count (default: the paper's Table I, brain 68856, skin 90207)");
+  phantom->add_option("-o,--output", opts->output, "File to write (.ply or .wrl)")->required();
+  on_selected(phantom, [opts] {
+    if (!opts->brain && !opts->skin) throw CLI::ValidationError("mesh phantom", "give --brain or --skin");
+    const std::size_t n = opts->vertices ? opts->vertices : (opts->brain ? brain_phantom_vertices : skin_phantom_vertices);
+    const Mesh mesh = opts->brain ? make_brain_phantom(n) : make_skin_phantom(n);
+    save_mesh(mesh, opts->output);
+    std::printf("wrote %s: %s vertices, %s triangles\n", opts->output.c_str(), with_thousands(mesh.vertex_count()).c_str(),
+                with_thousands(mesh.triangle_count()).c_str());
+    return 0;
+  });
+}
+
+}  // namespace palpate::cli

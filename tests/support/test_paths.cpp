@@ -1,0 +1,31 @@
+#include "test_paths.hpp"
+
+#include <cstdlib>
+#include <string>
+
+namespace palpate::test {
+
+std::filesystem::path source_dir() { return PALPATE_SOURCE_DIR; }
+std::filesystem::path binary_dir() { return PALPATE_BINARY_DIR; }
+
+std::optional<std::filesystem::path> shared_data_dir() {
+  if (const char* env = std::getenv("PALPATE_SHARED_DATA"); env && *env) {
+    if (std::filesystem::is_directory(env)) return std::filesystem::path(env);
+    return std::nullopt;
+  }
+  // The checkout sits beside ../shared; a worktree elsewhere may find it one level further up.
+  for (auto dir = source_dir(); dir.has_relative_path(); dir = dir.parent_path()) {
+    auto candidate = dir.parent_path() / "shared" / "data";
+    if (std::filesystem::is_regular_file(candidate / "manifest.tsv")) return candidate;
+  }
+  return std::nullopt;
+}
+
+std::filesystem::path scratch_dir(const std::string& name) {
+  auto dir = binary_dir() / "test-scratch" / name;
+  std::filesystem::remove_all(dir);
+  std::filesystem::create_directories(dir);
+  return dir;
+}
+
+}  // namespace palpate::test
