@@ -12,6 +12,21 @@
 #include "core/weld.hpp"
 #include "palpate/core/error.hpp"
 
+#include <stdexcept>
+
+// Debian's assimp 5.2 is built with its internal assertions on (ASSIMP_BUILD_DEBUG), and a failed
+// one aborts the process: a PLY file cut short trips one in the triangulation step. This definition
+// takes the place of assimp's own (a symbol of the executable wins when the dynamic linker binds
+// libassimp's call) and throws instead; Importer::ReadFile catches the exception and reports it as
+// an import error. (Where palpate is linked into a shared library instead, assimp's own handler
+// stays in place.)
+namespace Assimp {
+void aiAssertViolation(const char* expression, const char* /*file*/, int /*line*/) {
+  throw std::runtime_error(std::string("assimp's internal check \"") + expression +
+                           "\" failed (the file is probably truncated or malformed)");
+}
+}  // namespace Assimp
+
 namespace palpate::detail {
 namespace {
 

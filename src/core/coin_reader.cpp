@@ -28,6 +28,7 @@
 #include <Inventor/nodes/SoVertexProperty.h>
 #include <Inventor/nodes/SoVertexShape.h>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <optional>
@@ -241,6 +242,17 @@ std::optional<UnknownField> unknown_field(const std::string& message) {
   return UnknownField{match[1].str(), match[2].str()};
 }
 
+// Coin's message, with what it means for palpate where Coin's words alone would mislead.
+std::string describe(const CoinSession::ReadError& error, const std::string& text) {
+  std::string message = error.message;
+  if (message.rfind("Detected non-valid floating point number", 0) == 0) {
+    message = "a number is NaN, infinite or out of float range (Coin: " + message + ")";
+  }
+  const auto lines = static_cast<int>(std::count(text.begin(), text.end(), '\n')) + 1;
+  if (error.line >= lines) message += " (at the end of the file: is it truncated?)";
+  return message;
+}
+
 // Reads the scene graph, removing unknown fields and trying again where the options allow it.
 SoSeparator* read_scene_graph(CoinSession& coin, std::string text, const std::filesystem::path& file,
                               const LoadOptions& options) {
@@ -258,12 +270,12 @@ SoSeparator* read_scene_graph(CoinSession& coin, std::string text, const std::fi
     const CoinSession::ReadError first = coin.read_errors.front();
     const std::optional<UnknownField> unknown = unknown_field(first.message);
     if (!unknown || !options.drop_unknown_fields || dropped >= kMaxDroppedFields) {
-      throw Error(file, first.line, first.message);
+      throw Error(file, first.line, describe(first, text));
     }
     std::vector<std::string> types{unknown->node_type};
     if (unknown->node_type.rfind("VRML", 0) == 0) types.push_back(unknown->node_type.substr(4));
     const std::size_t removed = remove_vrml_field(text, unknown->field, types);
-    if (removed == 0) throw Error(file, first.line, first.message);
+    if (removed == 0) throw Error(file, first.line, describe(first, text));
     warn(options, file.string() + ":" + std::to_string(first.line) + ": dropped the non-standard field \"" +
                       unknown->field + "\" of " + types.back() + " (" + std::to_string(removed) +
                       (removed == 1 ? " occurrence" : " occurrences") + "), which Coin does not know");

@@ -3,8 +3,10 @@
 extern "C" {  // giftiio's header has no C++ guards
 #include <gifti/gifti_io.h>
 }
+#include <expat.h>
 #include <unistd.h>
 
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -58,6 +60,55 @@ T element(const giiDataArray& array, long long row, int column, long long rows, 
   return array.ind_ord == GIFTI_IND_ORD_COL_MAJOR ? values[column * rows + row] : values[row * columns + column];
 }
 
+// giftiio reports malformed XML and bad base64 only on stderr, and then goes on with zeroed data;
+// checking both first with expat gives a clear error and the line.
+struct XmlCheck {
+  XML_Parser parser = nullptr;
+  bool in_base64_data = false;
+  bool base64_array = false;
+  int bad_base64_line = 0;
+};
+
+void XMLCALL on_start(void* user, const XML_Char* name, const XML_Char** attributes) {
+  auto& check = *static_cast<XmlCheck*>(user);
+  if (std::strcmp(name, "DataArray") == 0) {
+    check.base64_array = false;
+    for (int i = 0; attributes[i]; i += 2) {
+      if (std::strcmp(attributes[i], "Encoding") == 0 && std::strstr(attributes[i + 1], "Base64")) check.base64_array = true;
+    }
+  }
+  check.in_base64_data = check.base64_array && std::strcmp(name, "Data") == 0;
+}
+
+void XMLCALL on_end(void* user, const XML_Char*) { static_cast<XmlCheck*>(user)->in_base64_data = false; }
+
+void XMLCALL on_text(void* user, const XML_Char* text, int length) {
+  auto& check = *static_cast<XmlCheck*>(user);
+  if (!check.in_base64_data || check.bad_base64_line) return;
+  for (int i = 0; i < length; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (!std::isalnum(c) && c != '+' && c != '/' && c != '=' && !std::isspace(c)) {
+      check.bad_base64_line = static_cast<int>(XML_GetCurrentLineNumber(check.parser));
+      return;
+    }
+  }
+}
+
+void check_xml(const std::string& content, const std::filesystem::path& file) {
+  XmlCheck check;
+  check.parser = XML_ParserCreate(nullptr);
+  if (!check.parser) throw Error(file, 0, "expat could not start");
+  XML_SetUserData(check.parser, &check);
+  XML_SetElementHandler(check.parser, on_start, on_end);
+  XML_SetCharacterDataHandler(check.parser, on_text);
+  const bool ok = XML_Parse(check.parser, content.data(), static_cast<int>(content.size()), /*isFinal=*/1) == XML_STATUS_OK;
+  const int line = static_cast<int>(XML_GetCurrentLineNumber(check.parser));
+  const std::string reason = ok ? "" : XML_ErrorString(XML_GetErrorCode(check.parser));
+  XML_ParserFree(check.parser);
+  if (!ok) throw Error(file, line, "malformed GIfTI XML: " + reason);
+  if (check.bad_base64_line) throw Error(file, check.bad_base64_line, "GIfTI data array is not valid base64");
+}
+
 const giiDataArray* find_array(const gifti_image& image, int intent) {
   for (int i = 0; i < image.numDA; ++i) {
     if (image.darray[i] && image.darray[i]->intent == intent) return image.darray[i];
@@ -75,6 +126,7 @@ void require_n_by_3(const giiDataArray& array, const char* what, const std::file
 }  // namespace
 
 Scene read_gifti_model(const std::string& content, bool was_gzip, const std::filesystem::path& file) {
+  check_xml(content, file);
   std::lock_guard lock(gifti_mutex());
   std::unique_ptr<TemporaryCopy> copy;
   if (was_gzip) copy = std::make_unique<TemporaryCopy>(content, file);
@@ -133,6 +185,19 @@ Scene read_gifti_model(const std::string& content, bool was_gzip, const std::fil
                                  ", but the POINTSET has " + std::to_string(vertex_count));
       }
       mesh.indices[static_cast<std::size_t>(t * 3 + corner)] = static_cast<std::uint32_t>(index);
+    }
+  }
+  // giftiio leaves an array it could not inflate zeroed (and says so only on stderr).
+  const Bounds extent = bounds(mesh);
+  if (extent.size() == glm::vec3(0.0f)) {
+    throw Error(file, 0, "GIfTI POINTSET: all vertices are at one point (its data array did not decode?)");
+  }
+  for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
+    const std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
+    if (a == b || b == c || a == c) {
+      throw Error(file, 0, "GIfTI TRIANGLE: triangle " + std::to_string(t / 3) + " repeats a vertex (" +
+                               std::to_string(a) + ", " + std::to_string(b) + ", " + std::to_string(c) +
+                               "): its data array did not decode?");
     }
   }
   compute_vertex_normals(mesh);
