@@ -5,6 +5,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <utility>
@@ -95,9 +96,12 @@ struct Collector {
     }
     if (input.weld_positions) {
       weld_positions(mesh);
-    } else if (mesh.normals.empty()) {
-      compute_vertex_normals(mesh);
     } else {
+      weld_identical(mesh);
+    }
+    if (mesh.normals.empty()) {
+      compute_vertex_normals(mesh);
+    } else if (std::any_of(mesh.normals.begin(), mesh.normals.end(), [](glm::vec3 n) { return n == glm::vec3(0.0f); })) {
       // Zero normals in the file (or assimp's) get the area-weighted ones.
       Mesh computed = mesh;
       compute_vertex_normals(computed);
@@ -116,8 +120,9 @@ Scene read_assimp_model(const AssimpInput& input, const LoadOptions& options) {
   Assimp::Importer importer;
   // Line and point primitives are split off by SortByPType and dropped: palpate draws triangles.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const unsigned flags = aiProcess_Triangulate | aiProcess_JoinIdenticalVertices | aiProcess_SortByPType |
-                         aiProcess_ValidateDataStructure;
+  // No aiProcess_JoinIdenticalVertices: palpate welds after import (weld.hpp), exactly and in
+  // linear time, where assimp's step took most of a large PLY's load.
+  const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
   const aiScene* scene =
       input.memory ? importer.ReadFileFromMemory(input.memory->data(), input.memory->size(), flags, input.format_hint.c_str())
                    : importer.ReadFile(input.file.string(), flags);

@@ -5,7 +5,6 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <iterator>
 
 #include "palpate/core/error.hpp"
 
@@ -64,8 +63,13 @@ FileBytes read_file_bytes(const std::filesystem::path& file) {
   std::ifstream in(file, std::ios::binary);
   if (!in) throw Error(file, 0, std::string("cannot open: ") + std::strerror(errno));
   FileBytes result;
-  result.bytes.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
-  if (in.bad()) throw Error(file, 0, "read error");
+  in.seekg(0, std::ios::end);
+  const std::streamoff size = in.tellg();
+  in.seekg(0, std::ios::beg);
+  if (size < 0) throw Error(file, 0, "cannot tell its size");
+  result.bytes.resize(static_cast<std::size_t>(size));
+  in.read(result.bytes.data(), size);
+  if (in.gcount() != size) throw Error(file, 0, "read error");
   if (result.bytes.empty()) throw Error(file, 0, "file is empty (0 bytes)");
   if (is_gzip(result.bytes)) {
     result.bytes = gunzip(result.bytes, file);

@@ -7,7 +7,6 @@
 #include <cstdint>
 #include <glm/geometric.hpp>
 #include <numbers>
-#include <unordered_map>
 
 namespace palpate::detail {
 namespace {
@@ -15,27 +14,34 @@ namespace {
 // Bit pattern of a float with -0 folded into +0, so that equal values weld.
 std::uint32_t bits(float v) noexcept { return std::bit_cast<std::uint32_t>(v == 0.0f ? 0.0f : v); }
 
-template <std::size_t N>
-struct KeyHash {
-  std::size_t operator()(const std::array<std::uint32_t, N>& key) const noexcept {
-    std::uint64_t h = 1469598103934665603ull;  // FNV-1a over the words
-    for (std::uint32_t word : key) h = (h ^ word) * 1099511628211ull;
-    return static_cast<std::size_t>(h ^ (h >> 29));
-  }
-};
-
 using PositionKey = std::array<std::uint32_t, 3>;
 PositionKey position_key(glm::vec3 p) noexcept { return {bits(p.x), bits(p.y), bits(p.z)}; }
 
+std::uint64_t hash(const PositionKey& key) noexcept {
+  std::uint64_t h = 0x9e3779b97f4a7c15ull;
+  for (std::uint32_t word : key) h = (h ^ word) * 0xff51afd7ed558ccdull;
+  return h ^ (h >> 32);
+}
+
 // Ids of distinct positions, in order of first appearance; returns the id of each input position.
+// An open-addressing table: a million lookups a load, where std::unordered_map's nodes cost.
 std::vector<std::uint32_t> weld_ids(const std::vector<glm::vec3>& positions, std::vector<glm::vec3>& distinct) {
-  std::unordered_map<PositionKey, std::uint32_t, KeyHash<3>> ids;
-  ids.reserve(positions.size());
+  constexpr std::uint32_t kEmpty = 0xffffffffu;
+  std::size_t capacity = 16;
+  while (capacity < positions.size() * 2) capacity *= 2;
+  std::vector<std::uint32_t> slots(capacity, kEmpty);
+  std::vector<PositionKey> keys;
   std::vector<std::uint32_t> id_of(positions.size());
   for (std::size_t i = 0; i < positions.size(); ++i) {
-    const auto [it, inserted] = ids.try_emplace(position_key(positions[i]), static_cast<std::uint32_t>(distinct.size()));
-    if (inserted) distinct.push_back(positions[i]);
-    id_of[i] = it->second;
+    const PositionKey key = position_key(positions[i]);
+    std::size_t slot = hash(key) & (capacity - 1);
+    while (slots[slot] != kEmpty && keys[slots[slot]] != key) slot = (slot + 1) & (capacity - 1);
+    if (slots[slot] == kEmpty) {
+      slots[slot] = static_cast<std::uint32_t>(keys.size());
+      keys.push_back(key);
+      distinct.push_back(positions[i]);
+    }
+    id_of[i] = slots[slot];
   }
   return id_of;
 }
@@ -104,24 +110,62 @@ Mesh mesh_from_soup(const TriangleSoup& soup, float crease_angle_rad) {
   }
   const bool colored = !soup.colors.empty();
 
-  using VertexKey = std::array<std::uint32_t, 7>;
-  std::unordered_map<VertexKey, std::uint32_t, KeyHash<7>> vertex_of;
-  vertex_of.reserve(distinct.size() * 2);
+  // The vertices of each position form a short list (one per normal and colour met there).
+  constexpr std::uint32_t kNone = 0xffffffffu;
+  std::vector<std::uint32_t> first_vertex(distinct.size(), kNone), next_vertex;
   Mesh mesh;
   mesh.indices.reserve(corners);
   for (std::size_t c = 0; c < corners; ++c) {
     const glm::vec3 n = normals[c];
     const glm::vec3 color = colored ? soup.colors[c] : glm::vec3(0.0f);
-    const VertexKey key{position_id[c], bits(n.x), bits(n.y), bits(n.z), bits(color.r), bits(color.g), bits(color.b)};
-    const auto [it, inserted] = vertex_of.try_emplace(key, static_cast<std::uint32_t>(mesh.positions.size()));
-    if (inserted) {
+    std::uint32_t v = first_vertex[position_id[c]];
+    while (v != kNone && !(position_key(mesh.normals[v]) == position_key(n) &&
+                           (!colored || position_key(mesh.colors[v]) == position_key(color)))) {
+      v = next_vertex[v];
+    }
+    if (v == kNone) {
+      v = static_cast<std::uint32_t>(mesh.positions.size());
       mesh.positions.push_back(distinct[position_id[c]]);
       mesh.normals.push_back(n);
       if (colored) mesh.colors.push_back(color);
+      next_vertex.push_back(first_vertex[position_id[c]]);
+      first_vertex[position_id[c]] = v;
     }
-    mesh.indices.push_back(it->second);
+    mesh.indices.push_back(v);
   }
   return mesh;
+}
+
+void weld_identical(Mesh& mesh) {
+  std::vector<glm::vec3> distinct;
+  const std::vector<std::uint32_t> position_id = weld_ids(mesh.positions, distinct);
+  if (distinct.size() == mesh.positions.size()) return;
+  const bool has_normals = mesh.normals.size() == mesh.positions.size();
+  const bool colored = !mesh.colors.empty();
+  constexpr std::uint32_t kNone = 0xffffffffu;
+  std::vector<std::uint32_t> first_vertex(distinct.size(), kNone), next_vertex, merged(mesh.positions.size());
+  Mesh out;
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    const std::uint32_t id = position_id[i];
+    std::uint32_t v = first_vertex[id];
+    while (v != kNone && !((!has_normals || position_key(out.normals[v]) == position_key(mesh.normals[i])) &&
+                           (!colored || position_key(out.colors[v]) == position_key(mesh.colors[i])))) {
+      v = next_vertex[v];
+    }
+    if (v == kNone) {
+      v = static_cast<std::uint32_t>(out.positions.size());
+      out.positions.push_back(mesh.positions[i]);
+      if (has_normals) out.normals.push_back(mesh.normals[i]);
+      if (colored) out.colors.push_back(mesh.colors[i]);
+      next_vertex.push_back(first_vertex[id]);
+      first_vertex[id] = v;
+    }
+    merged[i] = v;
+  }
+  for (std::uint32_t& index : mesh.indices) index = merged[index];
+  mesh.positions = std::move(out.positions);
+  mesh.normals = std::move(out.normals);
+  mesh.colors = std::move(out.colors);
 }
 
 void weld_positions(Mesh& mesh) {

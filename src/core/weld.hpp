@@ -27,4 +27,8 @@ Mesh mesh_from_soup(const TriangleSoup& soup, float crease_angle_rad);
 // first use's.
 void weld_positions(Mesh& mesh);
 
+// Merges vertices equal in position, normal and colour (bitwise) into one: what assimp's
+// JoinIdenticalVertices does (less texture coordinates, which palpate does not keep), in linear time.
+void weld_identical(Mesh& mesh);
+
 }  // namespace palpate::detail
