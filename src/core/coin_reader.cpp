@@ -32,7 +32,7 @@
 #include <cmath>
 #include <map>
 #include <optional>
-#include <regex>
+#include <string_view>
 
 #include "core/coin_index_check.hpp"
 #include "core/coin_session.hpp"
@@ -236,10 +236,15 @@ struct UnknownField {
 
 // Coin's words for a field its node type does not define: Unknown field "mirror" in "VRMLMaterial".
 std::optional<UnknownField> unknown_field(const std::string& message) {
-  static const std::regex pattern(R"re(^Unknown field "([^"]+)" in "?([A-Za-z0-9_]+)"?)re");
-  std::smatch match;
-  if (!std::regex_search(message, match, pattern)) return std::nullopt;
-  return UnknownField{match[1].str(), match[2].str()};
+  constexpr std::string_view opening = "Unknown field \"";
+  if (message.rfind(opening, 0) != 0) return std::nullopt;
+  const std::size_t field_end = message.find('"', opening.size());
+  const std::size_t in = message.find(" in ", field_end);
+  if (field_end == std::string::npos || in == std::string::npos) return std::nullopt;
+  std::string node_type = message.substr(in + 4);
+  std::erase(node_type, '"');
+  if (node_type.empty()) return std::nullopt;
+  return UnknownField{message.substr(opening.size(), field_end - opening.size()), node_type};
 }
 
 // Coin's message, with what it means for palpate where Coin's words alone would mislead.

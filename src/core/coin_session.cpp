@@ -5,7 +5,8 @@
 #include <Inventor/errors/SoReadError.h>
 
 #include <cctype>
-#include <regex>
+#include <cstdlib>
+#include <string_view>
 
 namespace palpate::detail {
 namespace {
@@ -17,14 +18,12 @@ std::mutex& coin_mutex() {
 
 // Coin formats a read error as "Coin read error: <what>\n\tOccurred at line <n> in <source>".
 CoinSession::ReadError parse_read_error(const std::string& text) {
-  static const std::regex located(R"(^(?:Coin read error: )?([\s\S]*?)\s*Occurred at line\s+(\d+))");
+  constexpr std::string_view prefix = "Coin read error: ", located = "Occurred at line";
   CoinSession::ReadError error;
-  std::smatch match;
-  if (std::regex_search(text, match, located)) {
-    error.message = match[1].str();
-    error.line = std::stoi(match[2].str());
-  } else {
-    error.message = text.rfind("Coin read error: ", 0) == 0 ? text.substr(17) : text;
+  error.message = text.rfind(prefix, 0) == 0 ? text.substr(prefix.size()) : text;
+  if (const std::size_t at = error.message.find(located); at != std::string::npos) {
+    error.line = std::atoi(error.message.c_str() + at + located.size());  // atoi skips the padding
+    error.message.erase(at);
   }
   while (!error.message.empty() && std::isspace(static_cast<unsigned char>(error.message.back()))) error.message.pop_back();
   return error;
