@@ -69,7 +69,7 @@ glm::vec3 to_glm(const SbVec3f& v) { return {v[0], v[1], v[2]}; }
 // Collects the triangles of each drawn shape instance into one SceneObject.
 class ShapeCollector {
  public:
-  ShapeCollector(const std::filesystem::path& file, const LoadOptions& options) : file_(file), options_(options) {}
+  explicit ShapeCollector(const std::filesystem::path& file) : file_(file) {}
 
   void attach(SoCallbackAction& action) {
     action.addPreCallback(SoShape::getClassTypeId(), &ShapeCollector::pre_shape, this);
@@ -225,7 +225,6 @@ class ShapeCollector {
   }
 
   const std::filesystem::path& file_;
-  const LoadOptions& options_;
   Current current_;
   bool active_ = false;
 };
@@ -293,7 +292,7 @@ Scene read_coin_model(const std::string& text, const std::filesystem::path& file
   CoinSession coin;
   SoSeparator* root = read_scene_graph(coin, text, file, options);
   root->ref();
-  ShapeCollector collector(file, options);
+  ShapeCollector collector(file);
   {
     SoCallbackAction action;
     collector.attach(action);
