@@ -16,6 +16,7 @@
 #include "commands.hpp"
 #include "cpu_burner.hpp"
 #include "haptic_scenarios.hpp"
+#include "mesh_reference.hpp"
 #include "palpate/core/bvh.hpp"
 #include "palpate/core/error.hpp"
 #include "palpate/core/shapes.hpp"
@@ -130,9 +131,10 @@ void bench_table1(const Options& options, Report& report) {
     add_rows("hover", c.name, triangles,
              run_cycles(prepared.scene, prepared.bvh, aimed_cycles(prepared.scene, touched, hover), 1e3f, nullptr), true,
              false, report);
+    const MeshReference reference(prepared.scene);
     add_rows("press-slide", c.name, triangles,
-             run_cycles(prepared.scene, prepared.bvh, aimed_cycles(prepared.scene, touched, press), 1e3f, nullptr), false,
-             true, report);
+             run_cycles(prepared.scene, prepared.bvh, aimed_cycles(prepared.scene, touched, press), 1e3f, &reference),
+             false, true, report);
   }
 }
 
@@ -199,7 +201,9 @@ LoopRow run_loop(const Prepared& prepared, double rate_hz, bool loaded, double s
 
 void bench_loops(const Options& options, Report& report) {
   progress("haptic thread on the Table I scene");
-  const Prepared prepared{table1_scene(true, true), Bvh::build(table1_scene(true, true))};
+  Scene scene = table1_scene(true, true);
+  Bvh bvh = Bvh::build(scene);
+  const Prepared prepared{std::move(scene), std::move(bvh)};
   const double seconds = options.quick ? 3.0 : 10.0;
   std::vector<double> rates{1000.0};
   if (!options.quick) rates.push_back(10'000.0);
@@ -255,7 +259,8 @@ void print(const Report& report, const Options& options) {
   std::printf("\npop: steps with the tip > 0.5 mm inside and no force; inward: steps with the tip > 0.2 mm inside and the\n"
               "force pointing inward; inside: steps with the proxy > 0.5 mm inside; stuck: cycles where the proxy, in\n"
               "contact, trailed the tip by more than 1 mm beyond the tip's depth. Inside is measured on the bumpy sphere's\n"
-              "implicit surface, independent of the BVH and the proxy.\n");
+              "implicit surface or, on other meshes, by a grid of the mesh's triangles (ray parity and nearest\n"
+              "triangle), independent of the BVH and the proxy.\n");
 }
 
 nlohmann::json to_json(const Percentiles& p) { return {{"p50", p.p50}, {"p99", p.p99}, {"p999", p.p999}, {"max", p.max}}; }

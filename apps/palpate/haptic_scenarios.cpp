@@ -22,6 +22,7 @@ namespace {
 constexpr double stuck_lag_mm = 1.0;
 constexpr double pop_through_depth_mm = 0.5;
 constexpr double inward_force_depth_mm = 0.2;
+constexpr float smoothing_radius_mm = 8.0f;
 
 glm::vec3 random_direction(std::mt19937& rng) {
   std::normal_distribution<float> normal;
@@ -54,84 +55,51 @@ PressSlide press_slide(glm::vec3 point, glm::vec3 normal, glm::vec3 tangent, flo
 
 }  // namespace
 
-double BumpySphereReference::radius_at(glm::dvec3 u) const noexcept {
-  return radius_mm_ + bump_mm_ * std::sin(15.0 * u.x) * std::sin(15.0 * u.y) * std::sin(15.0 * u.z + 0.7);
-}
-
-double BumpySphereReference::implicit(glm::dvec3 p) const noexcept {
-  const double r = glm::length(p);
-  return radius_at(p / r) - r;
-}
-
-glm::dvec3 BumpySphereReference::gradient(glm::dvec3 p) const noexcept {
-  const double h = 1e-4;
-  glm::dvec3 g;
-  for (int axis = 0; axis < 3; ++axis) {
-    glm::dvec3 step(0.0);
-    step[axis] = h;
-    g[axis] = (implicit(p + step) - implicit(p - step)) / (2.0 * h);
-  }
-  return g;
-}
-
-double BumpySphereReference::depth_mm(glm::vec3 p) const noexcept {
-  return implicit(glm::dvec3(p)) / glm::length(gradient(glm::dvec3(p)));
-}
-
-glm::vec3 BumpySphereReference::outward_normal(glm::vec3 p) const noexcept {
-  return glm::vec3(-glm::normalize(gradient(glm::dvec3(p))));
-}
-
-void BumpySphereReference::verify(const Mesh& mesh) const {
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    const glm::dvec3 v(mesh.positions[i]);
-    const double off = std::abs(glm::length(v) - radius_at(glm::normalize(v)));
-    if (!(off <= 1e-3)) {
-      throw Error("bench haptics: vertex " + std::to_string(i) + " of the bumpy sphere is " + std::to_string(off) +
-                  " mm off the reference surface: make_bumpy_sphere changed, update BumpySphereReference");
-    }
-  }
-}
-
 ScenarioResult run_cycles(const Scene& scene, const Bvh& bvh, const std::vector<SampledPath>& cycles, float max_force_n,
-                          const BumpySphereReference* reference) {
+                          const SurfaceReference* reference) {
   ScenarioResult result;
-  std::size_t total = 0;
-  for (const SampledPath& path : cycles) total += path.samples().size();
+  std::size_t total = 0, longest = 0;
+  for (const SampledPath& path : cycles) {
+    total += path.samples().size();
+    longest = std::max(longest, path.samples().size());
+  }
   result.free_tick_us.reserve(total);
   result.contact_tick_us.reserve(total);
   if (reference) result.checks = PathChecks{};
   DeviceLimits limits;
   limits.max_force_n = max_force_n;
+  std::vector<TickResult> ticks(longest);
   for (const SampledPath& path : cycles) {
     ScriptedDevice device(path, false, limits);
     HapticPipeline pipeline(device, scene, bvh);
     pipeline.reset_proxy(path.samples().front().position_mm);
-    bool stuck = false;
-    for (std::size_t k = 0; k < path.samples().size(); ++k) {
-      const double time_s = path.samples()[k].time_s;
+    const std::size_t count = path.samples().size();
+    // Time the whole cycle first, then check it, so the checks do not cool the caches between ticks.
+    for (std::size_t k = 0; k < count; ++k) {
       const auto start = std::chrono::steady_clock::now();
-      const TickResult tick = pipeline.tick(k, time_s);
+      ticks[k] = pipeline.tick(k, path.samples()[k].time_s);
       const auto end = std::chrono::steady_clock::now();
       const double us = std::chrono::duration<double, std::micro>(end - start).count();
-      (tick.contact.in_contact() ? result.contact_tick_us : result.free_tick_us).push_back(us);
-      if (!reference) continue;
-      PathChecks& checks = *result.checks;
+      (ticks[k].contact.in_contact() ? result.contact_tick_us : result.free_tick_us).push_back(us);
+    }
+    if (!reference) continue;
+    PathChecks& checks = *result.checks;
+    bool stuck = false;
+    for (std::size_t k = 0; k < count; ++k) {
+      const TickResult& tick = ticks[k];
       const glm::vec3 tip = path.samples()[k].position_mm;
       const double depth = reference->depth_mm(tip);
       const float force = glm::length(tick.force_n);
       checks.max_force_n = std::max(checks.max_force_n, double(force));
       if (depth > pop_through_depth_mm && force == 0.0f) ++checks.pop_through_steps;
-      if (depth > inward_force_depth_mm && glm::dot(tick.force_n, reference->outward_normal(tip)) < 0.0f) {
-        ++checks.inward_force_steps;
-      }
+      if (depth > inward_force_depth_mm && reference->pushes_inward(tip, tick.force_n)) ++checks.inward_force_steps;
       if (tick.contact.in_contact()) {
         if (reference->depth_mm(tick.contact.point) > pop_through_depth_mm) ++checks.proxy_inside_steps;
         const double lag = glm::length(tick.contact.point - tip) - std::max(depth, 0.0);
-        if (lag > stuck_lag_mm) stuck = true;
+        if (lag > stuck_lag_mm && depth < reference->depth_limit_mm()) stuck = true;
       }
     }
-    if (stuck && result.checks) ++result.checks->stuck_cycles;
+    if (stuck) ++checks.stuck_cycles;
   }
   return result;
 }
@@ -167,9 +135,15 @@ std::vector<PressSlide> aimed_press_slides(const Scene& scene, std::size_t objec
   std::uniform_int_distribution<std::size_t> pick(0, mesh.positions.size() - 1);
   std::vector<PressSlide> slides;
   for (int c = 0; c < shape.cycles; ++c) {
-    const std::size_t v = pick(rng);
-    const glm::vec3 point = glm::vec3(target.transform * glm::vec4(mesh.positions[v], 1.0f));
-    const glm::vec3 normal = glm::normalize(glm::mat3(target.transform) * mesh.normals[v]);
+    const glm::vec3 local = mesh.positions[pick(rng)];
+    // The surface's direction over the slide's scale, not one vertex's: bumps and sulci tilt single
+    // vertex normals by tens of degrees, which would send the slide deep or off the surface.
+    glm::vec3 normal_sum(0.0f);
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+      if (glm::length(mesh.positions[v] - local) < smoothing_radius_mm) normal_sum += mesh.normals[v];
+    }
+    const glm::vec3 point = glm::vec3(target.transform * glm::vec4(local, 1.0f));
+    const glm::vec3 normal = glm::normalize(glm::mat3(target.transform) * normal_sum);
     const float curvature = std::max(glm::length(point - centre), 10.0f);
     slides.push_back(press_slide(point, normal, random_tangent(rng, normal), curvature, shape));
   }

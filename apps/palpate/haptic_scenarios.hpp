@@ -1,8 +1,8 @@
 #pragma once
 // Path scenarios for `palpate bench haptics`: scripted tool-tip cycles run through the haptic
-// pipeline in simulated time (1 ms per tick, as fast as the CPU goes), each tick timed, and, on a
-// bumpy sphere, checked against the sphere's own implicit surface (independent of the BVH and the
-// proxy).
+// pipeline in simulated time (1 ms per tick, as fast as the CPU goes), each tick timed and checked
+// against a reference surface independent of the BVH and the proxy: the bumpy sphere's implicit
+// surface, or any closed mesh through MeshReference.
 #include <cstdint>
 #include <optional>
 #include <vector>
@@ -14,30 +14,9 @@
 #include "palpate/core/scene.hpp"
 #include "palpate/haptics/press_slide_path.hpp"
 #include "palpate/haptics/sampled_path.hpp"
+#include "surface_reference.hpp"
 
 namespace palpate::cli {
-
-// The smooth surface make_bumpy_sphere samples: radius(u) = r + b sin(15 x) sin(15 y) sin(15 z + 0.7)
-// for a unit direction u = (x, y, z). verify() holds it to the mesh, so a change of the generator
-// cannot silently change what the checks measure.
-class BumpySphereReference {
- public:
-  BumpySphereReference(float radius_mm, float bump_mm) : radius_mm_(radius_mm), bump_mm_(bump_mm) {}
-  // Throws palpate::Error when a vertex of `mesh` is more than 1e-3 mm off the surface.
-  void verify(const Mesh& mesh) const;
-  double radius_at(glm::dvec3 direction) const noexcept;
-  // Signed distance below the surface (positive inside), to first order: g / |grad g| with
-  // g(p) = radius(p / |p|) - |p|. The mesh's chords lie within about 0.06 mm of it at 22,952
-  // triangles and closer at more, well under the 0.2 and 0.5 mm thresholds of the checks.
-  double depth_mm(glm::vec3 p) const noexcept;
-  glm::vec3 outward_normal(glm::vec3 p) const noexcept;
-  float radius_mm() const noexcept { return radius_mm_; }
-
- private:
-  double implicit(glm::dvec3 p) const noexcept;
-  glm::dvec3 gradient(glm::dvec3 p) const noexcept;
-  float radius_mm_, bump_mm_;
-};
 
 // The correctness counts of a path scenario.
 struct PathChecks {
@@ -57,7 +36,7 @@ struct ScenarioResult {
 // One cycle per path, the proxy reset to the path's first sample before each; tick k at k ms.
 // Object 0 of `scene` gives the material; the device has `max_force_n`.
 ScenarioResult run_cycles(const Scene& scene, const Bvh& bvh, const std::vector<SampledPath>& cycles,
-                          float max_force_n, const BumpySphereReference* reference);
+                          float max_force_n, const SurfaceReference* reference);
 
 struct CycleShape {
   int cycles = 50;
