@@ -17,7 +17,7 @@ namespace {
 // that mixes two stores cannot pass check().
 struct Redundant {
   std::uint64_t serial = 0;
-  std::array<std::uint64_t, 11> words{};
+  std::array<std::uint64_t, 63> words{};  // 512 bytes: a wide window for a torn read to show
 };
 
 Redundant make_redundant(std::uint64_t serial) {
@@ -52,7 +52,7 @@ TEST(LatestTest, LoadReturnsTheLastStoreAndCountsVersions) {
 }
 
 TEST(LatestTest, ReadersNeverSeeATornOrOlderValueUnderAConcurrentWriter) {
-  constexpr std::uint64_t stores = 200'000;
+  constexpr std::uint64_t stores = 500'000;
   constexpr int reader_count = 3;
   Latest<Redundant> channel(make_redundant(0));
   std::atomic<bool> done{false};
