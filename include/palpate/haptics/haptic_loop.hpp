@@ -35,7 +35,7 @@ struct HapticLoopParams {
   ProxyParams proxy;
   bool realtime_priority = true;       // ask for SCHED_FIFO
   int fifo_priority = 80;              // 1..99 when SCHED_FIFO is granted
-  double spin_us = 50.0;               // spin this long before each deadline (at most half a period)
+  double spin_us = 100.0;              // spin this long before each deadline (at most half a period)
   std::size_t statistics_window = 32768;  // ticks behind the percentiles
 };
 

@@ -18,7 +18,7 @@ class LoopClock {
 // lands in the spin instead of in the period.
 class MonotonicClock final : public LoopClock {
  public:
-  explicit MonotonicClock(std::int64_t spin_ns = 60'000) noexcept : spin_ns_(spin_ns) {}
+  explicit MonotonicClock(std::int64_t spin_ns = 100'000) noexcept : spin_ns_(spin_ns) {}
   std::int64_t now_ns() noexcept override;
   void sleep_until_ns(std::int64_t deadline_ns) noexcept override;
   std::int64_t spin_ns() const noexcept { return spin_ns_; }
