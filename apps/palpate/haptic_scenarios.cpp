@@ -22,7 +22,6 @@ namespace {
 constexpr double stuck_lag_mm = 1.0;
 constexpr double pop_through_depth_mm = 0.5;
 constexpr double inward_force_depth_mm = 0.2;
-constexpr float smoothing_radius_mm = 8.0f;
 
 glm::vec3 random_direction(std::mt19937& rng) {
   std::normal_distribution<float> normal;
@@ -128,24 +127,13 @@ std::vector<SampledPath> sphere_slide_cycles(const BumpySphereReference& referen
 
 std::vector<PressSlide> aimed_press_slides(const Scene& scene, std::size_t object, const CycleShape& shape) {
   const SceneObject& target = scene.objects.at(object);
-  Mesh mesh = target.mesh;
-  if (mesh.normals.size() != mesh.positions.size()) compute_vertex_normals(mesh);
-  const glm::vec3 centre = glm::vec3(target.transform * glm::vec4(bounds(mesh).center(), 1.0f));
   std::mt19937 rng(shape.seed);
-  std::uniform_int_distribution<std::size_t> pick(0, mesh.positions.size() - 1);
+  std::uniform_int_distribution<std::size_t> pick(0, target.mesh.positions.size() - 1);
   std::vector<PressSlide> slides;
   for (int c = 0; c < shape.cycles; ++c) {
-    const glm::vec3 local = mesh.positions[pick(rng)];
-    // The surface's direction over the slide's scale, not one vertex's: bumps and sulci tilt single
-    // vertex normals by tens of degrees, which would send the slide deep or off the surface.
-    glm::vec3 normal_sum(0.0f);
-    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-      if (glm::length(mesh.positions[v] - local) < smoothing_radius_mm) normal_sum += mesh.normals[v];
-    }
-    const glm::vec3 point = glm::vec3(target.transform * glm::vec4(local, 1.0f));
-    const glm::vec3 normal = glm::normalize(glm::mat3(target.transform) * normal_sum);
-    const float curvature = std::max(glm::length(point - centre), 10.0f);
-    slides.push_back(press_slide(point, normal, random_tangent(rng, normal), curvature, shape));
+    const PressSlide aimed = aim_press_slide(target, pick(rng), glm::vec3(0.0f));
+    slides.push_back(press_slide(aimed.surface_point_mm, aimed.normal, random_tangent(rng, aimed.normal),
+                                 std::max(aimed.curvature_radius_mm, 10.0f), shape));
   }
   return slides;
 }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <glm/mat3x3.hpp>
 #include <numbers>
 #include <string>
 
@@ -107,6 +108,34 @@ DeviceState PressSlidePath::sample(double time_s) const noexcept {
     state.position_mm = surface_at(length) + normal_at(length) * spec_.start_height_mm;
   }
   return state;
+}
+
+PressSlide aim_press_slide(const SceneObject& object, std::size_t vertex, glm::vec3 slide_direction, PressSlide spec,
+                           float smoothing_radius_mm) {
+  const Mesh& mesh = object.mesh;
+  if (vertex >= mesh.positions.size()) {
+    throw Error("aim_press_slide: vertex " + std::to_string(vertex) + " of '" + object.name + "' is out of range (" +
+                std::to_string(mesh.positions.size()) + " vertices)");
+  }
+  Mesh with_normals;
+  const Mesh* normals_from = &mesh;
+  if (mesh.normals.size() != mesh.positions.size()) {
+    with_normals = mesh;
+    compute_vertex_normals(with_normals);
+    normals_from = &with_normals;
+  }
+  const glm::vec3 local = mesh.positions[vertex];
+  glm::vec3 normal_sum(0.0f);
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    if (glm::length(mesh.positions[v] - local) <= smoothing_radius_mm) normal_sum += normals_from->normals[v];
+  }
+  if (glm::length(normal_sum) < 1e-6f) normal_sum = normals_from->normals[vertex];
+  const glm::vec3 centre = glm::vec3(object.transform * glm::vec4(bounds(mesh).center(), 1.0f));
+  spec.surface_point_mm = glm::vec3(object.transform * glm::vec4(local, 1.0f));
+  spec.normal = glm::normalize(glm::mat3(object.transform) * normal_sum);
+  spec.slide_direction = slide_direction;
+  spec.curvature_radius_mm = glm::length(spec.surface_point_mm - centre);
+  return spec;
 }
 
 }  // namespace palpate

@@ -7,8 +7,10 @@
 #include <numbers>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "palpate/core/error.hpp"
+#include "palpate/core/shapes.hpp"
 #include "palpate/haptics/press_slide_path.hpp"
 #include "palpate/haptics/scripted_device.hpp"
 
@@ -134,6 +136,25 @@ TEST(PressSlidePathTest, RejectsBadSpecsNamingTheField) {
   PressSlide low_start = flat_spec();
   low_start.start_height_mm = -3.0f;
   EXPECT_NE(message(low_start).find("start_height_mm"), std::string::npos);
+}
+
+TEST(PressSlidePathTest, AimsAtAVertexOfAnObjectInWorldCoordinates) {
+  SceneObject ball;
+  ball.name = "ball";
+  ball.mesh = make_sphere(30.0f, 2000);
+  ball.transform = glm::translate(glm::mat4(1.0f), {100.0f, 0.0f, 0.0f});
+  const std::size_t vertex = 700;
+  const glm::vec3 local = ball.mesh.positions[vertex];
+  const PressSlide aimed = aim_press_slide(ball, vertex, {0.0f, 0.0f, 1.0f});
+  expect_near(aimed.surface_point_mm, local + glm::vec3(100.0f, 0.0f, 0.0f), 1e-4f, "the vertex, in world");
+  // On a sphere the smoothed normal is the radial direction and the curvature its radius.
+  expect_near(glm::normalize(aimed.normal), glm::normalize(local), 0.01f, "radial normal");
+  EXPECT_NEAR(aimed.curvature_radius_mm, 30.0f, 0.05f);
+  EXPECT_EQ(aimed.press_depth_mm, PressSlide{}.press_depth_mm) << "other fields kept";
+  // The aimed path presses 2.5 mm into the ball along the radius.
+  const PressSlidePath path(aimed);
+  EXPECT_NEAR(glm::length(path.sample(path.approach_end_s()).position_mm - glm::vec3(100.0f, 0.0f, 0.0f)), 27.5f, 0.05f);
+  EXPECT_THROW(aim_press_slide(ball, 5000, {0.0f, 0.0f, 1.0f}), Error);
 }
 
 TEST(ScriptedDeviceTest, FollowsItsPathRepeatsAndKeepsTheLastForce) {

@@ -8,6 +8,7 @@
 // curved object instead of leaving it. Depth is measured along that surface's normal, positive inside.
 #include <glm/vec3.hpp>
 
+#include "palpate/core/scene.hpp"
 #include "palpate/haptics/device.hpp"
 
 namespace palpate {
@@ -56,5 +57,13 @@ class PressSlidePath {
   glm::vec3 normal_{0.0f}, tangent_{0.0f};
   double approach_end_s_ = 0, slide_end_s_ = 0, retract_end_s_ = 0, duration_s_ = 0;
 };
+
+// `spec` aimed at vertex `vertex` of `object`, in world (scene) coordinates: the surface point is the
+// vertex, the normal the mean of the vertex normals within `smoothing_radius_mm` (the surface's
+// direction at the scale of a slide, not one bump's), the curvature that of the sphere through the
+// vertex about the object's bounds centre. The other fields are kept. Allocates when the mesh has
+// no normals; throws palpate::Error for a vertex out of range.
+PressSlide aim_press_slide(const SceneObject& object, std::size_t vertex, glm::vec3 slide_direction, PressSlide spec = {},
+                           float smoothing_radius_mm = 8.0f);
 
 }  // namespace palpate
