@@ -260,7 +260,9 @@ void print(const Report& report, const Options& options) {
               "force pointing inward; inside: steps with the proxy > 0.5 mm inside; stuck: cycles where the proxy, in\n"
               "contact, trailed the tip by more than 1 mm beyond the tip's depth. Inside is measured on the bumpy sphere's\n"
               "implicit surface or, on other meshes, by a grid of the mesh's triangles (ray parity and nearest\n"
-              "triangle), independent of the BVH and the proxy.\n");
+              "triangle), independent of the BVH and the proxy. sphere-slide asks for 53,021 triangles and gets\n"
+              "53,022: a closed triangle mesh has an even count (each edge joins two triangles, so 3F = 2E).\n"
+              "The *-standin meshes are bumpy spheres with the Table I phantoms' triangle counts.\n");
 }
 
 nlohmann::json to_json(const Percentiles& p) { return {{"p50", p.p50}, {"p99", p.p99}, {"p999", p.p999}, {"max", p.max}}; }
