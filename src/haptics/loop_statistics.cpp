@@ -19,17 +19,23 @@ std::uint32_t saturate(std::int64_t ns) noexcept {
 }
 
 // Nearest rank ceil(permille / 1000 * n), in integers so that 99.9 % of 1000 is exactly rank 999.
-double value_at_rank(std::span<const double> sorted, std::size_t permille) noexcept {
-  const std::size_t rank = (permille * sorted.size() + 999) / 1000;
-  return sorted[std::clamp<std::size_t>(rank, 1, sorted.size()) - 1];
+std::size_t rank_index(std::size_t count, std::size_t permille) noexcept {
+  return std::clamp<std::size_t>((permille * count + 999) / 1000, 1, count) - 1;
 }
 
 }  // namespace
 
 Percentiles percentiles(std::span<double> values) noexcept {
   if (values.empty()) return {};
-  std::sort(values.begin(), values.end());
-  return {value_at_rank(values, 500), value_at_rank(values, 990), value_at_rank(values, 999), values.back()};
+  // Selection instead of a sort: linear time, so a GUI can poll the statistics every frame.
+  const std::size_t i999 = rank_index(values.size(), 999), i99 = rank_index(values.size(), 990),
+                    i50 = rank_index(values.size(), 500);
+  const auto max = std::max_element(values.begin(), values.end());
+  std::iter_swap(max, values.end() - 1);
+  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(i999), values.end() - 1);
+  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(i99), values.begin() + std::ptrdiff_t(i999));
+  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(i50), values.begin() + std::ptrdiff_t(i99));
+  return {values[i50], values[i99], values[i999], values.back()};
 }
 
 LoopStatsRecorder::LoopStatsRecorder(double target_hz, std::size_t window_ticks)

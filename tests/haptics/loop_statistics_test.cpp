@@ -2,7 +2,10 @@
 // scripted tick costs and wake-up delays.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <random>
 #include <vector>
 
 #include "palpate/core/bvh.hpp"
@@ -79,6 +82,26 @@ TEST(PercentilesTest, NearestRank) {
   EXPECT_EQ(percentiles(one).p50, 7.0);
   EXPECT_EQ(percentiles(one).p999, 7.0);
   EXPECT_EQ(percentiles(std::span<double>()).max, 0.0);
+}
+
+TEST(PercentilesTest, AgreesWithASortOnRandomData) {
+  std::mt19937 rng(5);
+  std::exponential_distribution<double> latency(1.0);
+  for (const std::size_t n : {1u, 2u, 3u, 7u, 999u, 1000u, 1001u, 12345u}) {
+    std::vector<double> values(n);
+    for (double& v : values) v = latency(rng);
+    std::vector<double> sorted = values;
+    std::sort(sorted.begin(), sorted.end());
+    const auto nearest_rank = [&](double p) {
+      const auto rank = static_cast<std::size_t>(std::ceil(p * double(n) - 1e-9));
+      return sorted[std::max<std::size_t>(rank, 1) - 1];
+    };
+    const Percentiles p = percentiles(values);
+    EXPECT_EQ(p.p50, nearest_rank(0.5)) << n;
+    EXPECT_EQ(p.p99, nearest_rank(0.99)) << n;
+    EXPECT_EQ(p.p999, nearest_rank(0.999)) << n;
+    EXPECT_EQ(p.max, sorted.back()) << n;
+  }
 }
 
 TEST(LoopStatisticsTest, ScheduleAndFiguresOnAFakeClock) {

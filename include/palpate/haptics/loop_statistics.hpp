@@ -16,7 +16,7 @@ struct Percentiles {
 };
 
 // Nearest-rank percentiles (the p-th is the smallest value with at least p% of the values at or
-// below it). Sorts `values` in place; no allocation; all zero for an empty span.
+// below it). Reorders `values`; linear time, no allocation; all zero for an empty span.
 Percentiles percentiles(std::span<double> values) noexcept;
 
 struct LoopStatistics {
