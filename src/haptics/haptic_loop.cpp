@@ -1,0 +1,98 @@
+#include "palpate/haptics/haptic_loop.hpp"
+
+#include <pthread.h>
+#include <sched.h>
+#include <sys/prctl.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <string>
+
+#include "palpate/core/error.hpp"
+
+namespace palpate {
+namespace {
+
+double checked_rate(double rate_hz) {
+  if (!(std::isfinite(rate_hz) && rate_hz >= 1.0 && rate_hz <= 100'000.0)) {
+    throw Error("haptic loop: rate must be in [1, 100000] Hz, got " + std::to_string(rate_hz));
+  }
+  return rate_hz;
+}
+
+}  // namespace
+
+HapticLoop::HapticLoop(Device& device, const Scene& scene, const Bvh& bvh, const HapticLoopParams& params,
+                       LoopClock* clock)
+    : pipeline_(device, scene, bvh, params.device_to_scene, params.proxy),
+      rate_hz_(checked_rate(params.rate_hz)),
+      period_ns_(std::llround(1e9 / rate_hz_)),
+      params_(params),
+      own_clock_(clock ? nullptr
+                       : std::make_unique<MonotonicClock>(
+                             std::min<std::int64_t>(std::llround(std::max(params.spin_us, 0.0) * 1e3), period_ns_ / 2))),
+      clock_(clock ? *clock : *own_clock_),
+      stats_(rate_hz_, params.statistics_window) {}
+
+HapticLoop::~HapticLoop() { stop(); }
+
+void HapticLoop::begin_run() noexcept {
+  origin_ns_ = clock_.now_ns();
+  period_start_ns_ = origin_ns_ + period_ns_;
+  first_of_run_ = true;
+}
+
+void HapticLoop::run_period() noexcept {
+  clock_.sleep_until_ns(period_start_ns_);
+  const std::int64_t start_ns = clock_.now_ns();
+  const TickResult result = pipeline_.tick(next_tick_, double(start_ns - origin_ns_) * 1e-9);
+  contacts_.store(result.contact);
+  const std::int64_t end_ns = clock_.now_ns();
+  const std::int64_t period_end_ns = period_start_ns_ + period_ns_;
+  const bool missed = end_ns > period_end_ns;
+  stats_.record_tick(start_ns, end_ns, missed, result.invalid_input, first_of_run_);
+  first_of_run_ = false;
+  ++next_tick_;
+  // After a miss, start at once on the latest grid point passed: no burst of catch-up ticks.
+  period_start_ns_ = missed ? period_start_ns_ + (end_ns - period_start_ns_) / period_ns_ * period_ns_ : period_end_ns;
+}
+
+void HapticLoop::thread_main() noexcept {
+  prctl(PR_SET_TIMERSLACK, 1UL);  // wake from clock_nanosleep on time, not up to 50 us late
+  begin_run();
+  while (!stop_requested_.load(std::memory_order_relaxed)) run_period();
+}
+
+void HapticLoop::start() {
+  if (running()) throw Error("haptic loop: start() while already running");
+  stop_requested_.store(false, std::memory_order_relaxed);
+  thread_ = std::thread([this] { thread_main(); });
+  bool granted = false;
+  if (params_.realtime_priority) {
+    sched_param priority{};
+    priority.sched_priority = std::clamp(params_.fifo_priority, 1, 99);
+    const int status = pthread_setschedparam(thread_.native_handle(), SCHED_FIFO, &priority);
+    granted = status == 0;
+    if (!granted) {
+      std::fprintf(stderr, "palpate: haptic loop: SCHED_FIFO not permitted (%s); running at normal priority\n",
+                   std::strerror(status));
+    }
+  }
+  realtime_.store(granted, std::memory_order_relaxed);
+}
+
+void HapticLoop::stop() noexcept {
+  if (!running()) return;
+  stop_requested_.store(true, std::memory_order_relaxed);
+  thread_.join();
+}
+
+void HapticLoop::run_ticks(std::uint64_t count) {
+  if (running()) throw Error("haptic loop: run_ticks() while the thread runs");
+  begin_run();
+  for (std::uint64_t i = 0; i < count; ++i) run_period();
+}
+
+}  // namespace palpate
