@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "format.hpp"
 #include "cpu_burner.hpp"
 #include "haptic_scenarios.hpp"
 #include "mesh_reference.hpp"
@@ -214,15 +215,6 @@ void bench_loops(const Options& options, Report& report) {
       report.loops.push_back(run_loop(prepared, rate, loaded, seconds, options.seed));
     }
   }
-}
-
-std::string with_thousands(std::size_t n) {
-  std::string digits = std::to_string(n), out;
-  for (std::size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
 }
 
 void print(const Report& report, const Options& options) {

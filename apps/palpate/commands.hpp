@@ -10,6 +10,7 @@ void on_selected(CLI::App* command, std::function<int()> action);
 // Runs the action of the selected subcommand; returns its exit status.
 int run_selected(CLI::App& app);
 
+void add_demo_command(CLI::App& app);
 void add_mesh_command(CLI::App& app);
 
 // The `bench` group, made on the first call and returned on later ones: each benchmark adds its

@@ -11,6 +11,7 @@ int main(int argc, char** argv) {
   CLI::App app{"palpate: GPU visual deformation for point-based haptic applications"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "palpate 0.1.0");
+  palpate::cli::add_demo_command(app);
   palpate::cli::add_mesh_command(app);
   palpate::cli::add_bench_command(app);
   palpate::cli::add_bench_haptics_command(app);

@@ -6,21 +6,13 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "format.hpp"
 #include "palpate/core/load.hpp"
 #include "palpate/core/mesh_topology.hpp"
 #include "palpate/core/phantom.hpp"
 
 namespace palpate::cli {
 namespace {
-
-std::string with_thousands(std::size_t n) {
-  std::string digits = std::to_string(n), out;
-  for (std::size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
 
 int mesh_info(const std::vector<std::string>& files) {
   int status = 0;

@@ -16,19 +16,23 @@ std::size_t Scene::triangle_count() const noexcept {
   return n;
 }
 
-Bounds world_bounds(const Scene& scene) noexcept {
-  bool first = true;
+Bounds world_bounds(const SceneObject& object) noexcept {
   Bounds b;
-  for (const SceneObject& o : scene.objects) {
-    for (const glm::vec3& p : o.mesh.positions) {
-      const glm::vec3 w = glm::vec3(o.transform * glm::vec4(p, 1.0f));
-      if (first) {
-        b = {w, w};
-        first = false;
-      }
-      b.min = glm::min(b.min, w);
-      b.max = glm::max(b.max, w);
-    }
+  for (std::size_t i = 0; i < object.mesh.positions.size(); ++i) {
+    const glm::vec3 w = glm::vec3(object.transform * glm::vec4(object.mesh.positions[i], 1.0f));
+    b = i == 0 ? Bounds{w, w} : Bounds{glm::min(b.min, w), glm::max(b.max, w)};
+  }
+  return b;
+}
+
+Bounds world_bounds(const Scene& scene) noexcept {
+  Bounds b;
+  bool first = true;
+  for (const SceneObject& object : scene.objects) {
+    if (object.mesh.positions.empty()) continue;
+    const Bounds o = world_bounds(object);
+    b = first ? o : Bounds{glm::min(b.min, o.min), glm::max(b.max, o.max)};
+    first = false;
   }
   return b;
 }

@@ -39,15 +39,17 @@ HapticLoop::HapticLoop(Device& device, const Scene& scene, const Bvh& bvh, const
 HapticLoop::~HapticLoop() { stop(); }
 
 void HapticLoop::begin_run() noexcept {
-  origin_ns_ = clock_.now_ns();
-  period_start_ns_ = origin_ns_ + period_ns_;
+  const std::int64_t origin = clock_.now_ns();
+  origin_ns_.store(origin, std::memory_order_relaxed);
+  period_start_ns_ = origin + period_ns_;
   first_of_run_ = true;
 }
 
 void HapticLoop::run_period() noexcept {
   clock_.sleep_until_ns(period_start_ns_);
   const std::int64_t start_ns = clock_.now_ns();
-  const TickResult result = pipeline_.tick(next_tick_, double(start_ns - origin_ns_) * 1e-9);
+  const TickResult result =
+      pipeline_.tick(next_tick_, double(start_ns - origin_ns_.load(std::memory_order_relaxed)) * 1e-9);
   contacts_.store(result.contact);
   const std::int64_t end_ns = clock_.now_ns();
   const std::int64_t period_end_ns = period_start_ns_ + period_ns_;
@@ -61,13 +63,13 @@ void HapticLoop::run_period() noexcept {
 
 void HapticLoop::thread_main() noexcept {
   prctl(PR_SET_TIMERSLACK, 1UL);  // wake from clock_nanosleep on time, not up to 50 us late
-  begin_run();
   while (!stop_requested_.load(std::memory_order_relaxed)) run_period();
 }
 
 void HapticLoop::start() {
   if (running()) throw Error("haptic loop: start() while already running");
   stop_requested_.store(false, std::memory_order_relaxed);
+  begin_run();  // here, not on the thread: run_time_s() is valid as soon as start() returns
   thread_ = std::thread([this] { thread_main(); });
   bool granted = false;
   if (params_.realtime_priority) {
@@ -81,6 +83,10 @@ void HapticLoop::start() {
     }
   }
   realtime_.store(granted, std::memory_order_relaxed);
+}
+
+double HapticLoop::run_time_s() const noexcept {
+  return double(clock_.now_ns() - origin_ns_.load(std::memory_order_relaxed)) * 1e-9;
 }
 
 void HapticLoop::stop() noexcept {

@@ -25,7 +25,8 @@ struct Scene {
   std::size_t triangle_count() const noexcept;
 };
 
-// World-space bounds of all objects (visible or not).
+// World-space bounds of one object, and of all objects (visible or not).
+Bounds world_bounds(const SceneObject& object) noexcept;
 Bounds world_bounds(const Scene& scene) noexcept;
 
 }  // namespace palpate

@@ -69,6 +69,9 @@ class HapticLoop {
   const Latest<Contact>& contacts() const noexcept { return contacts_; }
   LoopStatistics statistics() const { return stats_.snapshot(); }
   double rate_hz() const noexcept { return rate_hz_; }
+  // Seconds on the loop's clock since the current run started, the scale of Contact::time_s: a reader
+  // learns how old a contact is as run_time_s() - contact.time_s. Any thread with the monotonic clock.
+  double run_time_s() const noexcept;
 
  private:
   void begin_run() noexcept;
@@ -84,7 +87,7 @@ class HapticLoop {
   LoopStatsRecorder stats_;
   Latest<Contact> contacts_;
 
-  std::int64_t origin_ns_ = 0;        // device time 0 of this run
+  std::atomic<std::int64_t> origin_ns_{0};  // device time 0 of this run
   std::int64_t period_start_ns_ = 0;  // grid point the next tick waits for
   bool first_of_run_ = true;
   std::uint64_t next_tick_ = 0;

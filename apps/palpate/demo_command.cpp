@@ -1,0 +1,200 @@
+// palpate demo: the main job. A scripted probe presses into the skin at three sites, then the skin is
+// hidden and the probe presses and slides across the brain, with the haptic thread at 1 kHz and the
+// graphics thread drawing each frame deformed. Writes frames, key frames, a contact sheet and a report,
+// and prints the paper's Table I with this run's figures.
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "commands.hpp"
+#include "gl_session.hpp"
+#include "image.hpp"
+#include "probe_scenes.hpp"
+#include "palpate/core/scene_file.hpp"
+#include "palpate/gl/png.hpp"
+#include "report.hpp"
+
+namespace palpate::cli {
+namespace {
+
+struct DemoOptions {
+  std::string scene_file;
+  std::string out_dir = "demo-out";
+  int frames = -1;
+  bool headless = false;
+  int width = 1280, height = 1024;
+  double video_fps = 30.0;
+};
+
+// Frames go to an MP4 through ffmpeg when it is installed, else to numbered PNGs.
+class FrameWriter {
+ public:
+  FrameWriter(const std::filesystem::path& out, int width, int height, double fps) : out_(out) {
+    if (std::system("command -v ffmpeg >/dev/null 2>&1") == 0) {
+      const std::string command = "ffmpeg -y -loglevel error -f rawvideo -pix_fmt rgba -s " + std::to_string(width) + "x" +
+                                  std::to_string(height) + " -framerate " + std::to_string(fps) +
+                                  " -i - -vf vflip -c:v libx264 -pix_fmt yuv420p '" + (out / "demo.mp4").string() + "'";
+      ffmpeg_ = popen(command.c_str(), "w");
+    }
+    if (!ffmpeg_) std::filesystem::create_directories(out / "frames");
+  }
+  ~FrameWriter() { finish(); }
+
+  void write(const Image& frame) {
+    if (ffmpeg_) {
+      std::fwrite(frame.rgba.data(), 1, frame.rgba.size(), ffmpeg_);
+    } else {
+      char name[32];
+      std::snprintf(name, sizeof name, "frame_%04d.png", count_);
+      gl::save_png(out_ / "frames" / name, frame.width, frame.height, frame.rgba);
+    }
+    ++count_;
+  }
+
+  // Where the frames went, for the report.
+  std::string finish() {
+    if (ffmpeg_) {
+      pclose(ffmpeg_);
+      ffmpeg_ = nullptr;
+      finished_ = "demo.mp4";
+    } else if (finished_.empty()) {
+      finished_ = "frames/";
+    }
+    return finished_;
+  }
+
+ private:
+  std::filesystem::path out_;
+  FILE* ffmpeg_ = nullptr;
+  int count_ = 0;
+  std::string finished_;
+};
+
+// A key frame of the contact sheet: the first frame, the deepest frame of each press, and for a long
+// slide four frames spread along it. Only these keep their full-size image.
+struct KeySlot {
+  int phase = 0, press = 0;
+  double at_time_s = -1.0;   // >= 0: the first frame at or after this time; < 0: the deepest frame
+  int capture = -1;          // which capture fills it, -1 while empty
+  float depth_mm = -1.0f;
+  CapturedFrame frame;
+  Image full, thumbnail;
+
+  bool wants(int frame_phase, int frame_press, const CapturedFrame& f) const {
+    if (frame_phase != phase) return false;
+    if (at_time_s >= 0.0) return capture < 0 && f.time_s >= at_time_s;
+    return frame_press == press && f.contact.in_contact() && f.contact.depth_mm > depth_mm;
+  }
+};
+
+std::vector<KeySlot> plan_key_frames(const std::vector<Phase>& phases) {
+  std::vector<KeySlot> slots = {KeySlot{0, 0, 0.0}};
+  for (int p = 0; p < int(phases.size()); ++p) {
+    const Phase& phase = phases[std::size_t(p)];
+    const bool slide = p > 0 && phase.presses.size() == 1;
+    const ProbeScript script = make_script(phase.presses);
+    for (int press = 0; press < int(phase.presses.size()); ++press) {
+      if (!slide) {
+        slots.push_back(KeySlot{p, press});
+        continue;
+      }
+      const PressSlidePath path(phase.presses[std::size_t(press)]);
+      const double from = script.press_start_s[std::size_t(press)] + path.approach_end_s();
+      const double span = path.slide_end_s() - path.approach_end_s();
+      for (int k = 0; k < 4; ++k) slots.push_back(KeySlot{p, press, from + span * (0.1 + 0.8 * k / 3.0)});
+    }
+  }
+  if (slots.size() > 9) slots.resize(9);
+  return slots;
+}
+
+int run_demo(const DemoOptions& options) {
+  const std::filesystem::path out = options.out_dir;
+  std::filesystem::create_directories(out);
+  const Scene scene = options.scene_file.empty() ? default_scene() : load_scene(options.scene_file);
+  GlSession gl_session = open_gl(options.headless, options.width, options.height, "palpate demo");
+  const std::vector<Phase> phases = demo_phases(scene);
+  std::printf("palpate demo: %zu objects, %zu vertices; %s on %s; output in %s/\n", scene.objects.size(),
+              scene.vertex_count(), gl_session.window ? "window" : "headless EGL", gl_session.renderer.c_str(),
+              out.string().c_str());
+
+  gl::Framebuffer framebuffer({.width = options.width, .height = options.height, .color = gl::ColorFormat::rgba8, .samples = 4});
+  gl::Renderer renderer;
+  FrameWriter writer(out, options.width, options.height, options.video_fps);
+  std::vector<KeySlot> slots = plan_key_frames(phases);
+  std::vector<PhaseResult> results;
+  int captured = 0;
+
+  for (int p = 0; p < int(phases.size()); ++p) {
+    const Phase& phase = phases[std::size_t(p)];
+    const std::vector<double> press_starts = make_script(phase.presses).press_start_s;
+    RunOptions run;
+    run.capture_fps = options.video_fps;
+    run.max_captures = options.frames;
+    run.window = gl_session.window.get();
+    run.on_capture = [&](const CapturedFrame& frame) {
+      Image full{framebuffer.width(), framebuffer.height(), frame.framebuffer->read_rgba8()};
+      writer.write(full);
+      const auto later = std::upper_bound(press_starts.begin(), press_starts.end(), frame.time_s);
+      const int press = std::max(0, int(later - press_starts.begin()) - 1);
+      for (KeySlot& slot : slots) {
+        if (!slot.wants(p, press, frame)) continue;
+        slot.capture = frame.index;
+        slot.depth_mm = frame.contact.depth_mm;
+        slot.frame = frame;
+        slot.full = full;
+        slot.thumbnail = downsample(full, 4);
+      }
+      ++captured;
+    };
+    results.push_back(run_phase(phase, renderer, framebuffer, run, captured));
+    if (options.frames >= 0 && captured >= options.frames) break;
+    if (gl_session.window && gl_session.window->should_close()) break;
+  }
+  const std::string frames_at = writer.finish();
+
+  std::erase_if(slots, [](const KeySlot& slot) { return slot.capture < 0; });
+  std::sort(slots.begin(), slots.end(), [](const KeySlot& a, const KeySlot& b) { return a.capture < b.capture; });
+  nlohmann::json key_json = nlohmann::json::array();
+  std::vector<Image> thumbnails;
+  for (std::size_t k = 0; k < slots.size(); ++k) {
+    const KeySlot& slot = slots[k];
+    const std::string file = "keyframe_" + std::to_string(k) + ".png";
+    gl::save_png(out / file, slot.full.width, slot.full.height, slot.full.rgba);
+    key_json.push_back(key_frame_json(file, phases[std::size_t(slot.phase)], slot.frame));
+    thumbnails.push_back(slot.thumbnail);
+  }
+  if (!thumbnails.empty()) {
+    const Image contact_sheet = tile(thumbnails, std::min<int>(4, int(thumbnails.size())));
+    gl::save_png(out / "contact_sheet.png", contact_sheet.width, contact_sheet.height, contact_sheet.rgba);
+  }
+
+  nlohmann::json report = run_report_json(gl_session.renderer, options.width, options.height, results);
+  report["frames"] = {{"count", captured}, {"fps", options.video_fps}, {"at", frames_at}};
+  report["key_frames"] = key_json;
+  std::ofstream(out / "report.json") << report.dump(2) << "\n";
+  print_table1(stdout, gl_session.renderer, options.width, options.height, results, {});
+  std::printf("wrote %s/report.json, %s/contact_sheet.png, %d frames (%s)\n", out.string().c_str(), out.string().c_str(),
+              captured, frames_at.c_str());
+  return 0;
+}
+
+}  // namespace
+
+void add_demo_command(CLI::App& app) {
+  auto options = std::make_shared<DemoOptions>();
+  CLI::App* demo = app.add_subcommand("demo", "The headless (or windowed) demo: a probe presses the skin, then slides on the brain");
+  demo->add_option("--scene", options->scene_file, "Scene file (TOML); default: the built-in brain and skin phantoms")
+      ->check(CLI::ExistingFile);
+  demo->add_option("--out", options->out_dir, "Output folder")->capture_default_str();
+  demo->add_option("--frames", options->frames, "Stop after this many captured frames (default: the whole script)")
+      ->check(CLI::PositiveNumber);
+  demo->add_flag("--headless", options->headless, "Render through EGL even when there is a display");
+  demo->add_option("--width", options->width, "Frame width in pixels")->capture_default_str()->check(CLI::Range(64, 8192));
+  demo->add_option("--height", options->height, "Frame height in pixels")->capture_default_str()->check(CLI::Range(64, 8192));
+  on_selected(demo, [options] { return run_demo(*options); });
+}
+
+}  // namespace palpate::cli

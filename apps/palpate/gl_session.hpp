@@ -1,0 +1,20 @@
+#pragma once
+// The OpenGL context of a command: a window when there is a display and it is wanted, else headless EGL.
+#include <memory>
+#include <string>
+
+#include "palpate/gl/headless_context.hpp"
+#include "palpate/gl/window.hpp"
+
+namespace palpate::cli {
+
+struct GlSession {
+  std::unique_ptr<gl::HeadlessContext> headless;
+  std::unique_ptr<gl::Window> window;  // null when headless
+  std::string renderer;                // GL_RENDERER, e.g. "llvmpipe (LLVM 15.0.6, 256 bits)"
+};
+
+// A window when `headless` is false and $DISPLAY or $WAYLAND_DISPLAY is set; headless EGL otherwise.
+GlSession open_gl(bool headless, int width, int height, const std::string& title);
+
+}  // namespace palpate::cli

@@ -1,0 +1,80 @@
+#pragma once
+// The paper's system (its Fig. 7) in one process: the haptic loop at 1 kHz on its own thread, on the
+// undeformed geometry, and the graphics loop on this thread, which reads the latest contact each frame
+// without blocking the haptic thread and draws the scene deformed. Used by `demo` and `bench table1`.
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "palpate/core/orbit_camera.hpp"
+#include "palpate/core/scene.hpp"
+#include "palpate/gl/framebuffer.hpp"
+#include "palpate/gl/renderer.hpp"
+#include "palpate/gl/window.hpp"
+#include "palpate/haptics/loop_statistics.hpp"
+#include "palpate/haptics/press_slide_path.hpp"
+#include "palpate/haptics/sampled_path.hpp"
+
+namespace palpate::cli {
+
+// One stretch of a run: a scene state (which objects are visible and touchable), a camera and the
+// presses the scripted probe makes, one after the other.
+struct Phase {
+  std::string model;  // the row name in the paper's Table I: "Brain", "Skin", "Skin + Brain"
+  Scene scene;
+  OrbitCamera camera;
+  std::vector<PressSlide> presses;
+};
+
+// The presses as one device path sampled every millisecond, with transits between them that leave
+// along the normal to `clearance_mm` so the tip never cuts through the object in free flight.
+struct ProbeScript {
+  SampledPath path;
+  std::vector<double> press_start_s;  // when each press begins on the path
+};
+ProbeScript make_script(const std::vector<PressSlide>& presses, float clearance_mm = 60.0f);
+
+// A surface point of `object_index` seen from the camera through the viewport position `where`
+// (x, y in [0, 1] from the top left), aimed as a press sliding toward the camera's right.
+// Throws palpate::Error when the ray misses the object.
+PressSlide aim_at_view(const Scene& scene, int object_index, const OrbitCamera& camera, glm::vec2 where,
+                       const PressSlide& spec);
+
+struct CapturedFrame {
+  int index = 0;             // capture number within the run
+  double time_s = 0.0;       // haptic run time at the frame
+  Contact contact;           // what the frame was drawn with
+  glm::mat4 view{1.0f}, projection{1.0f};
+  const gl::Framebuffer* framebuffer = nullptr;  // holds the frame (read it before returning)
+};
+
+struct RunOptions {
+  gl::Deformation deformation = gl::Deformation::gpu;
+  double haptic_rate_hz = 1000.0;
+  double capture_fps = 0.0;      // frames handed to on_capture per second of run time; 0: none
+  int max_captures = -1;         // stop the run after this many captures; -1: no limit
+  double max_seconds = -1.0;     // stop the phase after this much run time; -1: the script's length
+  gl::Window* window = nullptr;  // also shown there when given
+  std::function<void(const CapturedFrame&)> on_capture;
+};
+
+struct PhaseResult {
+  std::string model;
+  std::size_t vertices = 0, faces = 0;  // of the visible objects
+  int frames = 0;
+  double seconds = 0.0;
+  double graphics_fps = 0.0;            // frames over the time spent drawing them (capture excluded)
+  double haptics_hz = 0.0;              // ticks over the run's length
+  Percentiles contact_age_ms;           // how old the contact each frame drew was
+  LoopStatistics haptics;
+  std::vector<double> frame_ms;         // each frame's drawing time
+  std::vector<double> frame_times_s;    // run time at each frame
+  int captures = 0;
+};
+
+// Runs one phase on `framebuffer` (bound by the caller's context). Returns when the script ends, when
+// max_seconds or max_captures is reached, or when the window is closed.
+PhaseResult run_phase(const Phase& phase, gl::Renderer& renderer, const gl::Framebuffer& framebuffer,
+                      const RunOptions& options, int captures_so_far = 0);
+
+}  // namespace palpate::cli
