@@ -12,6 +12,7 @@ int run_selected(CLI::App& app);
 
 void add_demo_command(CLI::App& app);
 void add_mesh_command(CLI::App& app);
+void add_view_command(CLI::App& app);
 
 // The `bench` group, made on the first call and returned on later ones: each benchmark adds its
 // subcommand to it (bench haptics, bench render, ...).

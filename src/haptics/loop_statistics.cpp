@@ -103,6 +103,8 @@ LoopStatistics LoopStatsRecorder::snapshot() const {
     const auto period = static_cast<std::uint32_t>(packed);
     if (period == no_period) continue;
     periods_us.push_back(double(period) * 1e-3);
+    const double bin = (double(period) / double(target_period_ns_) - 0.5) * double(LoopStatistics::histogram_bins);
+    ++stats.period_histogram[std::size_t(std::clamp(bin, 0.0, double(LoopStatistics::histogram_bins - 1)))];
     errors_us.push_back(std::abs(double(std::int64_t(period) - target_period_ns_)) * 1e-3);
   }
   stats.tick_us = percentiles(ticks_us);

@@ -132,6 +132,12 @@ TEST(LoopStatisticsTest, ScheduleAndFiguresOnAFakeClock) {
   EXPECT_DOUBLE_EQ(stats.period_us.max, 2500.0);
   EXPECT_DOUBLE_EQ(stats.period_error_us.p50, 0.0);
   EXPECT_DOUBLE_EQ(stats.period_error_us.p99, 1500.0);
+  // Histogram bins of 25 us from 500 us: 1000 us lands in bin 20, 500 in bin 0, 2500 (beyond) in the last.
+  std::array<std::uint32_t, LoopStatistics::histogram_bins> histogram{};
+  histogram[20] = 3;
+  histogram[0] = 1;
+  histogram[LoopStatistics::histogram_bins - 1] = 1;
+  EXPECT_EQ(stats.period_histogram, histogram);
   // Less than a second run: 5 periods in 6 ms.
   EXPECT_NEAR(stats.achieved_hz, 5.0 / 0.006, 1e-9);
   const Contact last = loop.latest_contact();

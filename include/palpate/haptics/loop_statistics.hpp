@@ -3,6 +3,7 @@
 // achieved rate over the last second, tick duration and period percentiles over a window of recent
 // ticks, missed deadlines. The loop thread records; any thread takes a snapshot at any time without
 // blocking it.
+#include <array>
 #include <atomic>
 #include <cstddef>
 #include <cstdint>
@@ -31,6 +32,10 @@ struct LoopStatistics {
   Percentiles tick_us;                    // tick duration: device read to contact published
   Percentiles period_us;                  // start to start of consecutive ticks
   Percentiles period_error_us;            // |period - 1 / target_hz|
+  // The window's periods in equal bins from 0.5 to 1.5 target periods; the first and last bins also
+  // count the periods below and above that range. For a live histogram.
+  static constexpr std::size_t histogram_bins = 40;
+  std::array<std::uint32_t, histogram_bins> period_histogram{};
 };
 
 // Single writer (the loop thread), any number of readers.

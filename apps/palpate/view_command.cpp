@@ -1,0 +1,327 @@
+// palpate view: an interactive window. The mouse drives a virtual 3-DOF device (the tip moves under the
+// cursor in the view plane, its depth by Shift+wheel or W/S), the haptic loop runs on it at 1 kHz, and
+// the scene is drawn deformed, with the force as an arrow and a panel of materials, lights and live
+// rates. Written on Dear ImGui's GLFW and OpenGL3 backends.
+#include <GLFW/glfw3.h>
+#include <epoxy/gl.h>
+#include <imgui.h>
+#include <imgui_impl_glfw.h>
+#include <imgui_impl_opengl3.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <glm/geometric.hpp>
+#include <memory>
+
+#include "commands.hpp"
+#include "gl_session.hpp"
+#include "palpate/core/bvh.hpp"
+#include "palpate/core/error.hpp"
+#include "palpate/core/orbit_camera.hpp"
+#include "palpate/core/scene_file.hpp"
+#include "palpate/gl/png.hpp"
+#include "palpate/gl/renderer.hpp"
+#include "palpate/haptics/haptic_loop.hpp"
+#include "palpate/haptics/virtual_device.hpp"
+#include "probe_scenes.hpp"
+
+namespace palpate::cli {
+namespace {
+
+struct ViewOptions {
+  std::string scene_file;
+  int width = 1280, height = 1024;
+  int frames = -1;            // quit after this many frames (for scripted runs)
+  std::string screenshot;     // write the last frame here before quitting
+  float press_depth_mm = 0.0f;  // start with the tip this deep under the window's centre
+};
+
+// The haptic side of the viewer: rebuilt whenever a material or touchability changes, so the haptic
+// thread never reads a value the GUI is writing.
+struct Haptics {
+  Bvh bvh;
+  std::unique_ptr<HapticLoop> loop;
+};
+
+void restart_haptics(Haptics& haptics, VirtualDevice& device, const Scene& scene) {
+  if (haptics.loop) haptics.loop->stop();
+  haptics.loop.reset();
+  haptics.bvh = Bvh::build(scene);
+  haptics.loop = std::make_unique<HapticLoop>(device, scene, haptics.bvh);
+  haptics.loop->start();
+}
+
+bool save_screenshot(const std::string& file, int width, int height) {
+  std::vector<std::uint8_t> pixels(std::size_t(width) * std::size_t(height) * 4);
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, 0);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, pixels.data());
+  for (std::size_t i = 3; i < pixels.size(); i += 4) pixels[i] = 255;
+  try {
+    gl::save_png(file, width, height, pixels);
+    std::printf("palpate view: screenshot %s\n", file.c_str());
+    return true;
+  } catch (const Error& e) {
+    std::fprintf(stderr, "palpate view: %s\n", e.what());
+    return false;
+  }
+}
+
+// A world point to window pixels (top-left origin); false when behind the camera.
+bool to_screen(const glm::mat4& view_projection, glm::vec3 p, glm::vec2 size, ImVec2& out) {
+  const glm::vec4 clip = view_projection * glm::vec4(p, 1.0f);
+  if (clip.w <= 0.0f) return false;
+  const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+  out = ImVec2((ndc.x * 0.5f + 0.5f) * size.x, (0.5f - ndc.y * 0.5f) * size.y);
+  return true;
+}
+
+void draw_force_arrow(const glm::mat4& view_projection, glm::vec2 size, glm::vec3 hip, glm::vec3 force_n, float depth_mm) {
+  const float magnitude = glm::length(force_n);
+  if (magnitude < 1e-3f) return;
+  ImVec2 from, to;
+  const float mm_per_newton = 15.0f;
+  if (!to_screen(view_projection, hip, size, from) || !to_screen(view_projection, hip + force_n * mm_per_newton, size, to)) return;
+  ImDrawList* draw = ImGui::GetForegroundDrawList();
+  const ImU32 color = IM_COL32(255, 210, 60, 255);
+  draw->AddLine(from, to, color, 3.0f);
+  const glm::vec2 direction = glm::normalize(glm::vec2(to.x - from.x, to.y - from.y) + glm::vec2(1e-6f));
+  const glm::vec2 side{-direction.y, direction.x};
+  const glm::vec2 tip{to.x, to.y};
+  const glm::vec2 a = tip - direction * 14.0f + side * 7.0f, b = tip - direction * 14.0f - side * 7.0f;
+  draw->AddTriangleFilled(to, ImVec2(a.x, a.y), ImVec2(b.x, b.y), color);
+  char label[64];
+  std::snprintf(label, sizeof label, "%.2f N  p = %.2f mm", magnitude, depth_mm);
+  draw->AddText(ImVec2(to.x + 8.0f, to.y - 8.0f), color, label);
+}
+
+// Moves the tip under the cursor in the plane through it that faces the camera.
+glm::vec3 tip_under_cursor(const OrbitCamera& camera, glm::vec2 cursor, glm::vec2 size, glm::vec3 tip) {
+  const OrbitCamera::Ray ray = camera.ray_through(cursor, size);
+  const glm::vec3 facing = glm::normalize(camera.target - camera.eye());
+  const float along = glm::dot(ray.direction, facing);
+  if (std::abs(along) < 1e-4f) return tip;
+  return ray.origin + ray.direction * (glm::dot(tip - ray.origin, facing) / along);
+}
+
+struct Panel {
+  int deformation = 0;  // gl::Deformation: gpu, cpu_naive, none
+  bool draw_contact_point = false;
+};
+
+// The control panel; returns true when a material changed (the haptics and the upload are redone).
+bool draw_panel(Scene& scene, gl::DrawOptions& draw, Panel& panel, const LoopStatistics& stats, const Contact& contact,
+                glm::vec3 force_n, bool& reset_tip, bool& screenshot) {
+  bool changed = false;
+  ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
+  ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
+  ImGui::Begin("palpate");
+  ImGui::TextWrapped("Left drag: move the tip. Shift+wheel or W/S: tip depth. Right drag: orbit. Wheel: zoom. "
+                     "R: reset tip. P: screenshot. Esc: quit.");
+  if (ImGui::CollapsingHeader("Rates", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::Text("graphics %.1f fps (%.2f ms)", ImGui::GetIO().Framerate, 1000.0f / ImGui::GetIO().Framerate);
+    ImGui::Text("haptics %.1f Hz, %llu missed, tick p99 %.1f us", stats.achieved_hz,
+                static_cast<unsigned long long>(stats.missed_deadlines), stats.tick_us.p99);
+    ImGui::Text("period error p50 %.1f  p99 %.1f  p99.9 %.1f us", stats.period_error_us.p50, stats.period_error_us.p99,
+                stats.period_error_us.p999);
+    float bins[LoopStatistics::histogram_bins];
+    for (std::size_t i = 0; i < LoopStatistics::histogram_bins; ++i) bins[i] = float(stats.period_histogram[i]);
+    ImGui::PlotHistogram("##period", bins, int(LoopStatistics::histogram_bins), 0, "haptic period 0.5 .. 1.5 T", 0.0f,
+                         FLT_MAX, ImVec2(0, 70));
+  }
+  if (ImGui::CollapsingHeader("Contact", ImGuiTreeNodeFlags_DefaultOpen)) {
+    if (contact.in_contact()) {
+      ImGui::Text("on %s, p = %.2f mm, |F| = %.2f N", scene.objects[std::size_t(contact.object)].name.c_str(),
+                  contact.depth_mm, glm::length(force_n));
+    } else {
+      ImGui::TextUnformatted("free");
+    }
+    ImGui::Text("tip %.1f %.1f %.1f mm", contact.hip.x, contact.hip.y, contact.hip.z);
+    reset_tip = ImGui::Button("Reset tip");
+    ImGui::SameLine();
+    screenshot = ImGui::Button("Screenshot");
+  }
+  if (ImGui::CollapsingHeader("Rendering", ImGuiTreeNodeFlags_DefaultOpen)) {
+    ImGui::Combo("deformation", &panel.deformation, "GPU (the paper)\0CPU-naive\0none\0");
+    ImGui::Checkbox("probe", &draw.draw_probe);
+    ImGui::SameLine();
+    ImGui::Checkbox("contact point", &draw.draw_contact_points);
+    ImGui::SliderFloat("probe radius mm", &draw.probe_radius_mm, 0.5f, 5.0f);
+  }
+  if (ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) {
+    for (std::size_t i = 0; i < scene.objects.size(); ++i) {
+      SceneObject& object = scene.objects[i];
+      ImGui::PushID(int(i));
+      ImGui::Text("%s", object.name.c_str());
+      changed |= ImGui::Checkbox("visible", &object.material.visible);
+      ImGui::SameLine();
+      changed |= ImGui::Checkbox("touchable", &object.material.touchable);
+      changed |= ImGui::SliderFloat("sigma mm", &object.material.sigma_mm, 0.5f, 40.0f);
+      changed |= ImGui::SliderFloat("k N/mm", &object.material.stiffness_n_per_mm, 0.02f, 2.0f);
+      changed |= ImGui::SliderFloat("b N s/m", &object.material.damping_ns_per_m, 0.0f, 5.0f);
+      changed |= ImGui::ColorEdit3("colour", &object.material.color.x);
+      ImGui::PopID();
+    }
+  }
+  if (ImGui::CollapsingHeader("Lights")) {
+    gl::Lighting& light = draw.lighting;
+    if (ImGui::SliderFloat3("directional", &light.direction.x, -1.0f, 1.0f) && glm::length(light.direction) > 1e-3f) {
+      light.direction = glm::normalize(light.direction);
+    }
+    ImGui::ColorEdit3("directional colour", &light.color.x);
+    ImGui::SliderFloat("spot inner deg", &light.spot_inner_deg, 1.0f, 60.0f);
+    ImGui::SliderFloat("spot outer deg", &light.spot_outer_deg, light.spot_inner_deg, 80.0f);
+    ImGui::ColorEdit3("spot colour", &light.spot_color.x);
+    ImGui::ColorEdit3("ambient", &light.ambient.x);
+    ImGui::SliderFloat("specular", &light.specular, 0.0f, 1.0f);
+  }
+  ImGui::End();
+  return changed;
+}
+
+int run_view(const ViewOptions& options) {
+  Scene scene = options.scene_file.empty() ? default_scene() : load_scene(options.scene_file);
+  GlSession session = open_gl(false, options.width, options.height, "palpate view");
+  if (!session.window) throw Error("palpate view needs a display ($DISPLAY): run it under X or Xvfb, or use `palpate demo`");
+  gl::Window& window = *session.window;
+  auto* native = static_cast<GLFWwindow*>(window.native_handle());
+
+  IMGUI_CHECKVERSION();
+  ImGui::CreateContext();
+  ImGui::GetIO().IniFilename = nullptr;
+  ImGui_ImplGlfw_InitForOpenGL(native, true);
+  ImGui_ImplOpenGL3_Init("#version 450 core");
+
+  OrbitCamera camera = demo_camera(world_bounds(scene));
+  const glm::vec2 initial_size{float(window.framebuffer_width()), float(window.framebuffer_height())};
+  // The tip starts 10 mm in front of the surface under the window's centre; with --press-depth it then
+  // moves that deep into it (approaching from outside, as a hand would).
+  glm::vec3 start_tip = camera.target, tip = camera.target;
+  {
+    const Bvh bvh = Bvh::build(scene);
+    const OrbitCamera::Ray ray = camera.ray_through(initial_size * 0.5f, initial_size);
+    const BvhHit hit = bvh.first_hit(glm::dvec3(ray.origin), glm::dvec3(ray.origin + ray.direction * camera.distance_mm * 3.0f));
+    if (hit.hit()) {
+      start_tip = hit.point - ray.direction * 10.0f;
+      tip = options.press_depth_mm > 0.0f ? hit.point + ray.direction * options.press_depth_mm : start_tip;
+    }
+  }
+  VirtualDevice device(start_tip);
+  device.set_target(tip);
+  Haptics haptics;
+  restart_haptics(haptics, device, scene);
+
+  gl::Renderer renderer;
+  renderer.upload(scene);
+  gl::DrawOptions draw;
+  Panel panel;
+  bool orbiting = false, dragging_tip = false;
+  glm::dvec2 last_cursor{0.0};
+  int frame = 0;
+
+  while (!window.should_close()) {
+    gl::Window::poll_events();
+    const int width = window.framebuffer_width(), height = window.framebuffer_height();
+    const glm::vec2 size{float(std::max(width, 1)), float(std::max(height, 1))};
+    ImGuiIO& io = ImGui::GetIO();
+
+    // Mouse and keys, where ImGui does not want them.
+    glm::dvec2 cursor;
+    glfwGetCursorPos(native, &cursor.x, &cursor.y);
+    int window_width = 1, window_height = 1;
+    glfwGetWindowSize(native, &window_width, &window_height);
+    const glm::vec2 pixel = glm::vec2(cursor) * size / glm::vec2(std::max(window_width, 1), std::max(window_height, 1));
+    if (!io.WantCaptureMouse) {
+      const bool left = glfwGetMouseButton(native, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+      const bool right = glfwGetMouseButton(native, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+      if (right && orbiting) camera.orbit(float(last_cursor.x - cursor.x) * 0.008f, float(cursor.y - last_cursor.y) * 0.008f);
+      orbiting = right;
+      dragging_tip = left;
+      if (dragging_tip) tip = tip_under_cursor(camera, pixel, size, tip);
+      if (io.MouseWheel != 0.0f) {
+        if (io.KeyShift) {
+          tip += glm::normalize(camera.target - camera.eye()) * io.MouseWheel;
+        } else {
+          camera.zoom(std::pow(0.9f, io.MouseWheel));
+        }
+      }
+    }
+    last_cursor = cursor;
+    bool reset_tip = false, screenshot = false;
+    if (!io.WantCaptureKeyboard) {
+      const glm::vec3 facing = glm::normalize(camera.target - camera.eye());
+      const float step = 40.0f * io.DeltaTime;  // mm per frame at 40 mm/s
+      if (glfwGetKey(native, GLFW_KEY_W) == GLFW_PRESS) tip += facing * step;
+      if (glfwGetKey(native, GLFW_KEY_S) == GLFW_PRESS) tip -= facing * step;
+      reset_tip = ImGui::IsKeyPressed(ImGuiKey_R);
+      screenshot = ImGui::IsKeyPressed(ImGuiKey_P);
+      if (ImGui::IsKeyPressed(ImGuiKey_Escape)) window.request_close();
+    }
+    device.set_target(tip);
+
+    const Contact latest = haptics.loop->latest_contact();
+    Contact shown = latest;
+    if (!shown.in_contact()) shown.hip = device.position();
+    const LoopStatistics stats = haptics.loop->statistics();
+
+    ImGui_ImplOpenGL3_NewFrame();
+    ImGui_ImplGlfw_NewFrame();
+    ImGui::NewFrame();
+    bool panel_reset = false, panel_shot = false;
+    const bool materials_changed =
+        draw_panel(scene, draw, panel, stats, shown, device.last_force(), panel_reset, panel_shot);
+    if (reset_tip || panel_reset) {
+      tip = start_tip;
+      device.set_target(tip);
+    }
+    const glm::mat4 view = camera.view(), projection = camera.projection(size.x / size.y);
+    if (latest.in_contact()) draw_force_arrow(projection * view, size, latest.hip, device.last_force(), latest.depth_mm);
+    ImGui::Render();
+
+    if (materials_changed) {
+      restart_haptics(haptics, device, scene);
+      renderer.upload(scene);
+    }
+    draw.deformation = std::array{gl::Deformation::gpu, gl::Deformation::cpu_naive, gl::Deformation::none}[std::size_t(panel.deformation)];
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glViewport(0, 0, width, height);
+    glClearColor(0.08f, 0.09f, 0.11f, 1.0f);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    renderer.draw(view, projection, std::span<const Contact>(&shown, 1), draw);
+    ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+    ++frame;
+
+    const bool last_frame = options.frames > 0 && frame >= options.frames;
+    if (screenshot || panel_shot) {
+      char name[64];
+      std::snprintf(name, sizeof name, "palpate-view-%04d.png", frame);
+      save_screenshot(name, width, height);
+    }
+    if (last_frame && !options.screenshot.empty() && !save_screenshot(options.screenshot, width, height)) return 1;
+    window.swap_buffers();
+    if (last_frame) window.request_close();
+  }
+  haptics.loop->stop();
+  ImGui_ImplOpenGL3_Shutdown();
+  ImGui_ImplGlfw_Shutdown();
+  ImGui::DestroyContext();
+  return 0;
+}
+
+}  // namespace
+
+void add_view_command(CLI::App& app) {
+  auto options = std::make_shared<ViewOptions>();
+  CLI::App* view = app.add_subcommand("view", "Interactive viewer: the mouse drives a virtual haptic device");
+  view->add_option("--scene", options->scene_file, "Scene file (TOML); default: the built-in brain and skin phantoms")
+      ->check(CLI::ExistingFile);
+  view->add_option("--width", options->width, "Window width")->capture_default_str()->check(CLI::Range(64, 8192));
+  view->add_option("--height", options->height, "Window height")->capture_default_str()->check(CLI::Range(64, 8192));
+  view->add_option("--frames", options->frames, "Quit after this many frames")->check(CLI::PositiveNumber);
+  view->add_option("--screenshot", options->screenshot, "With --frames: save the last frame to this PNG");
+  view->add_option("--press-depth", options->press_depth_mm, "Start with the tip this many mm under the surface at the centre")
+      ->check(CLI::Range(0.0, 30.0));
+  on_selected(view, [options] { return run_view(*options); });
+}
+
+}  // namespace palpate::cli
