@@ -109,6 +109,16 @@ bool supported(const Bvh& bvh, const Candidate* c, int count, const glm::dvec3& 
   return true;
 }
 
+// Whether triangle `b` comes up in front of `face`'s plane (by more than `tolerance`): then the two
+// meet in a concave crease and both constrain the proxy; otherwise `b` lies beyond a convex edge.
+bool rises_above(const Bvh::Triangle& b, const Candidate& face, double epsilon) noexcept {
+  const double surface = face.offset - epsilon;
+  for (const glm::vec3& v : b.vertices) {
+    if (glm::dot(face.normal, glm::dvec3(v)) - surface > 1e-3 * epsilon) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 void ProxyState::reset(glm::vec3 p) noexcept {
@@ -127,12 +137,13 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   const double epsilon = params.surface_epsilon_mm;
   const double tolerance = 1e-3 * epsilon;
 
-  // Warm start from the planes the proxy rested on: sliding on a face then costs one segment.
+  // Warm start from the planes the proxy rested on (sliding on a face then costs one segment), except
+  // those whose surface the HIP is now on or in front of: they hold nothing back.
   Candidate c[max_candidates];
   int count = 0;
   for (int i = 0; i < state.constraint_count; ++i) {
     const ProxyConstraint& k = state.constraints[std::size_t(i)];
-    c[count++] = {k.normal, k.offset, k.primitive, k.multiplier};
+    if (glm::dot(k.normal, hip) < k.offset - epsilon) c[count++] = {k.normal, k.offset, k.primitive, k.multiplier};
   }
   glm::dvec3 p = state.position;
   std::uint32_t last_primitive = count > 0 ? c[0].primitive : 0;  // for a contact if the cap cuts a search short
@@ -184,6 +195,29 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
       // The look past the last edge found the same edge or vertex: that is the closest point.
       if (clamped && last_clamped && glm::distance(corner, last_corner) < tolerance) break;
     }
+    if (clamped) {
+      // The face's nearest point is on its edge: first see what lies toward the HIP from here.
+      const BvhHit next = bvh.first_hit(p, hip, Faces::front, tolerance);
+      if (!next.hit()) {  // nothing in the way: the HIP is outside and reachable
+        p = hip;
+        count = 0;
+        break;
+      }
+      if (next.primitive != c[0].primitive) {
+        const Candidate face = c[0];
+        const Candidate other = stop_before(next, hip);
+        if (rises_above(bvh.triangle(next.primitive), face, epsilon)) {
+          c[count++] = other;  // a concave crease: both faces hold the proxy
+          last_clamped = false;
+        } else {
+          c[0] = other;  // past a convex edge: the face beyond takes over
+          last_clamped = true;
+          last_corner = corner;
+        }
+        continue;
+      }
+      // Its own face is in the way: walk on it to its nearest point (then look again from there).
+    }
     const glm::dvec3 path = goal - p;
     if (glm::dot(path, path) > 1e-24) {  // 1e-12 mm
       const BvhHit hit = bvh.first_hit(p, goal, Faces::front, tolerance);
@@ -193,23 +227,11 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
         continue;
       }
       p = goal;
+      if (clamped) continue;
+    } else if (clamped) {
+      break;  // at its face's nearest point, the face itself in the way: as close as it gets
     }
-    if (count == 0) break;  // free: at the HIP
-    if (count == 1) {
-      if (!clamped) break;  // resting inside a face
-      // At the edge of its face: look past it toward the HIP for the face that continues the surface.
-      const BvhHit next = bvh.first_hit(p, hip, Faces::front, tolerance);
-      if (!next.hit()) {  // nothing in the way: the HIP is outside, reachable
-        p = hip;
-        count = 0;
-        break;
-      }
-      if (next.primitive == c[0].primitive) break;  // its own face is in the way: the edge is closest
-      c[0] = stop_before(next, hip);
-      last_clamped = true;
-      last_corner = corner;
-      continue;
-    }
+    if (count <= 1) break;  // free at the HIP, or resting inside a face
     if (supported(bvh, c, count, p, epsilon)) break;
     count = 0;  // a crease or corner past the end of its triangles: find the constraints again from here
     last_clamped = false;

@@ -116,8 +116,10 @@ InsideReference::InsideReference(const Scene& scene) {
   }
 }
 
-int InsideReference::axis_winding(const Grid& g, const glm::dvec3& p) const {
+int InsideReference::axis_winding(const Grid& g, glm::dvec3 p) const {
   const int a = g.axis, u = (a + 1) % 3, v = (a + 2) % 3;
+  p[u] += 1.41421356e-9;
+  p[v] += 0.73205081e-9;
   const int k = int(std::floor((p[u] - g.origin.x) / g.cell.x)), j = int(std::floor((p[v] - g.origin.y) / g.cell.y));
   if (k < 0 || j < 0 || k >= g.cells || j >= g.cells) return 0;
   int winding = 0;

@@ -26,7 +26,8 @@ Mesh make_comb(int teeth, float tooth_width_mm, float gap_mm, float tooth_height
 
 // Winding number of the scene's touchable closed surfaces around points, by counting signed crossings
 // of rays along +x, +y and +z (each through a 2D grid of the triangles' projections) and taking the
-// majority, so a point on a projected edge in one direction cannot decide alone.
+// majority. Each ray is moved sideways by ~1e-9 mm in an irrational direction, so it does not run
+// exactly through a projected edge (a symmetric corner lies on the diagonals of all three faces).
 class InsideReference {
  public:
   explicit InsideReference(const Scene& scene);
@@ -48,7 +49,7 @@ class InsideReference {
     std::vector<std::vector<std::uint32_t>> bins;
   };
 
-  int axis_winding(const Grid& grid, const glm::dvec3& p) const;
+  int axis_winding(const Grid& grid, glm::dvec3 p) const;
 
   std::vector<Triangle> triangles_;
   Grid grids_[3];

@@ -5,11 +5,14 @@
 //
 // Each tick the proxy moves from where it was toward the HIP. Every segment it travels is cast against
 // the BVH (continuous collision, so a fast move through a thin plate is stopped at the plate); each
-// triangle it runs into adds its plane as a constraint, and the next goal is the point nearest the HIP
-// on the side of up to three planes (face, crease or edge line, corner point), found by an exact
-// active-set solve. A goal reached in free space ends the tick; if the proxy has slid past the end of
-// its supporting triangles (over a convex edge or vertex) the constraints are dropped and found again
-// from there, in the same tick. The distance to the HIP never grows within a tick, so it terminates.
+// triangle it runs into adds its plane as a constraint. With two or three planes (a concave crease or
+// corner) the next goal is the point nearest the HIP on their free side, by an exact active-set solve.
+// With one, it is the nearest point of that triangle (lifted off it): when that lies on the triangle's
+// edge, the proxy first looks from where it is toward the HIP. A clear view means the HIP is outside and
+// reachable: contact ends. A different triangle in view either rises in front of the first (a concave
+// crease: both constrain) or lies past a convex edge (it takes over, and the proxy walks onto it). So the
+// proxy slides over convex edges and vertices and settles on them when they are the surface's nearest
+// point. A tick casts at most `max_iterations` segments; a search cut short resumes the next tick.
 //
 // The proxy floats `surface_epsilon_mm` above the planes it touches. Only front faces (crossed from
 // outside, against the outward normal) stop it: meshes are closed, and a proxy that starts inside an
@@ -34,11 +37,11 @@
 namespace palpate {
 
 struct ProxyParams {
-  // How far outside the surfaces it touches the proxy floats, mm: far above double rounding at scene
-  // scale (1e-13 mm), far below anything a hand feels or a screen shows.
+  // How far outside the surfaces it touches the proxy floats, mm (> 0): far above double rounding at
+  // scene scale (1e-13 mm), far below anything a hand feels or a screen shows.
   double surface_epsilon_mm = 1e-3;
-  // Segments cast per tick at most (each either reaches its goal or meets one more plane). A proxy on a
-  // face needs 1-2, a corner 3-4, a slide off a convex edge a few more.
+  // Segments cast per tick at most (each reaches its goal, meets one more plane or looks past an edge).
+  // Sliding inside a face needs 1, across an edge 2-4, into a corner 3-4.
   int max_iterations = 16;
 };
 
