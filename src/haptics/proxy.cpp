@@ -1,5 +1,6 @@
-// God-object proxy step: continuous collision of the proxy's path against the BVH, and the point
-// nearest the HIP on the side of up to three constraint planes by an exact active-set solve.
+// God-object proxy step: continuous collision of the proxy's path against the BVH; on one face, a walk
+// to the face's nearest point and a look past its edge; on two or three (concave creases and corners),
+// the point nearest the HIP on the free side of their planes.
 #include "palpate/haptics/proxy.hpp"
 
 #include <algorithm>
@@ -19,8 +20,8 @@ constexpr double min_triple_determinant = 1e-6;
 constexpr double min_multiplier = -1e-9;  // mm
 
 struct Candidate {
-  glm::dvec3 normal;
-  double offset;
+  glm::dvec3 normal;  // unit, outward
+  double offset;      // normal . x >= offset: the face's plane raised by the surface epsilon
   std::uint32_t primitive;
   double multiplier;
 };
@@ -28,20 +29,21 @@ struct Candidate {
 struct Solution {
   bool found = false;
   unsigned mask = 0;        // which candidates the minimum rests on
-  glm::dvec3 offset{0.0};   // minimum - HIP
+  glm::dvec3 point{0.0};    // the minimum
   double multiplier[max_candidates] = {};
 };
 
 bool finite(glm::vec3 v) noexcept { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-// The point x nearest `hip` with normal_i . x >= offset_i for all candidates: a strictly convex
-// problem with at most four constraints, so try the subsets of active planes from the smallest up;
-// the first whose multipliers are >= 0 and whose point satisfies the other planes is the minimum.
 // Subsets of up to three of four candidates, smallest first, as bit masks (listing them beats
 // counting bits at run time).
 constexpr unsigned subsets_by_size[] = {0b0000, 0b0001, 0b0010, 0b0100, 0b1000, 0b0011, 0b0101, 0b0110,
                                         0b1001, 0b1010, 0b1100, 0b0111, 0b1011, 0b1101, 0b1110};
 
+// The point nearest `hip` on the free side of every candidate's plane: a strictly convex problem with
+// at most four constraints, so try the subsets of planes it may rest on from the smallest up; the
+// first whose multipliers are >= 0 (the HIP pushes into each) and whose point is on the free side of
+// the others is the minimum (an exact active-set solve).
 Solution solve(const Candidate* c, int count, const glm::dvec3& hip, double tolerance) noexcept {
   double violation[max_candidates];  // how far the HIP is behind each plane, mm
   for (int i = 0; i < count; ++i) violation[i] = c[i].offset - glm::dot(c[i].normal, hip);
@@ -55,10 +57,11 @@ Solution solve(const Candidate* c, int count, const glm::dvec3& hip, double tole
     }
     Solution s;
     s.mask = mask;
+    s.point = hip;
     if (size == 1) {
       const int i = index[0];
       s.multiplier[i] = violation[i];
-      s.offset = violation[i] * c[i].normal;
+      s.point += violation[i] * c[i].normal;
     } else if (size == 2) {
       const int i = index[0], j = index[1];
       const double cosine = glm::dot(c[i].normal, c[j].normal);
@@ -66,24 +69,25 @@ Solution solve(const Candidate* c, int count, const glm::dvec3& hip, double tole
       if (determinant < min_pair_determinant) continue;
       s.multiplier[i] = (violation[i] - cosine * violation[j]) / determinant;
       s.multiplier[j] = (violation[j] - cosine * violation[i]) / determinant;
-      s.offset = s.multiplier[i] * c[i].normal + s.multiplier[j] * c[j].normal;
+      s.point += s.multiplier[i] * c[i].normal + s.multiplier[j] * c[j].normal;
     } else if (size == 3) {
       const int i = index[0], j = index[1], k = index[2];
       const glm::dvec3 jk = glm::cross(c[j].normal, c[k].normal), ki = glm::cross(c[k].normal, c[i].normal),
                        ij = glm::cross(c[i].normal, c[j].normal);
       const double determinant = glm::dot(c[i].normal, jk);
       if (std::abs(determinant) < min_triple_determinant) continue;
-      s.offset = (violation[i] * jk + violation[j] * ki + violation[k] * ij) / determinant;
-      s.multiplier[i] = glm::dot(s.offset, jk) / determinant;
-      s.multiplier[j] = glm::dot(s.offset, ki) / determinant;
-      s.multiplier[k] = glm::dot(s.offset, ij) / determinant;
+      const glm::dvec3 offset = (violation[i] * jk + violation[j] * ki + violation[k] * ij) / determinant;
+      s.multiplier[i] = glm::dot(offset, jk) / determinant;
+      s.multiplier[j] = glm::dot(offset, ki) / determinant;
+      s.multiplier[k] = glm::dot(offset, ij) / determinant;
+      s.point += offset;
     }
     bool valid = true;
     for (int i = 0; i < count && valid; ++i) {
       if (mask & (1u << i)) {
         valid = s.multiplier[i] >= min_multiplier;
       } else {
-        valid = glm::dot(c[i].normal, s.offset) - violation[i] >= -tolerance;
+        valid = glm::dot(c[i].normal, s.point) - c[i].offset >= -tolerance;
       }
     }
     if (valid) {
@@ -94,8 +98,8 @@ Solution solve(const Candidate* c, int count, const glm::dvec3& hip, double tole
   return {};
 }
 
-// Whether the proxy still lies over every triangle of its crease or corner (within `tolerance` of their
-// edges). When it does not, it has followed the planes past the end of the feature into free space.
+// Whether the proxy still lies over every triangle it rests on (within `tolerance` of their edges).
+// When it does not, it has followed their planes past the end of the triangles into free space.
 bool supported(const Bvh& bvh, const Candidate* c, int count, const glm::dvec3& p, double tolerance) noexcept {
   for (int i = 0; i < count; ++i) {
     const Bvh::Triangle& tri = bvh.triangle(c[i].primitive);
@@ -115,6 +119,13 @@ bool rises_above(const Bvh::Triangle& b, const Candidate& face, double epsilon) 
   const double surface = face.offset - epsilon;
   for (const glm::vec3& v : b.vertices) {
     if (glm::dot(face.normal, glm::dvec3(v)) - surface > 1e-3 * epsilon) return true;
+  }
+  return false;
+}
+
+bool holds(const Candidate* c, int count, std::uint32_t primitive) noexcept {
+  for (int i = 0; i < count; ++i) {
+    if (c[i].primitive == primitive) return true;
   }
   return false;
 }
@@ -147,8 +158,10 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   }
   glm::dvec3 p = state.position;
   std::uint32_t last_primitive = count > 0 ? c[0].primitive : 0;  // for a contact if the cap cuts a search short
-  bool last_clamped = false;
-  glm::dvec3 last_corner(0.0);  // where the last look past an edge started from
+  bool handed_over = false;     // the last look past an edge handed the proxy to the face beyond
+  glm::dvec3 handover_from(0.0);  // ... from this nearest point of the face before
+  std::uint32_t last_seen = 0;    // the face the last look past an edge found
+  bool seen_any = false;
 
   // Moves p toward `to` until the path is epsilon above the plane of the triangle it ran into (not at
   // all when it starts closer than that): everything before the hit is free, so this never crosses a
@@ -169,72 +182,70 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   int iteration = 0;
   while (iteration < params.max_iterations) {
     ++iteration;
+    const int offered = count;
     const Solution s = solve(c, count, hip, tolerance);
-    if (!s.found) break;  // degenerate planes (a gap narrower than 2 epsilon): stay put this tick
-    int kept = 0;
-    for (int i = 0; i < count; ++i) {
-      if (s.mask & (1u << i)) {
-        c[kept] = c[i];
-        c[kept++].multiplier = s.multiplier[i];
-      }
-    }
-    count = kept;
-    glm::dvec3 goal = hip + s.offset;
-    bool clamped = false;
-    glm::dvec3 corner(0.0);
-    if (count == 1) {
-      // On one face: the nearest point of that triangle (not of its whole plane), so the proxy walks
-      // onto an edge or vertex when that is where the surface comes closest to the HIP.
-      const Bvh::Triangle& tri = bvh.triangle(c[0].primitive);
-      corner = closest_point_on_triangle(hip, glm::dvec3(tri.vertices[0]), glm::dvec3(tri.vertices[1]),
-                                         glm::dvec3(tri.vertices[2]));
-      const glm::dvec3 lifted = corner + (c[0].offset - glm::dot(c[0].normal, corner)) * c[0].normal;
-      const glm::dvec3 step = lifted - goal;
-      clamped = glm::dot(step, step) > tolerance * tolerance;
-      goal = lifted;
-      // The look past the last edge found the same edge or vertex: that is the closest point.
-      if (clamped && last_clamped && glm::distance(corner, last_corner) < tolerance) break;
-    }
-    if (clamped) {
-      // The face's nearest point is on its edge: first see what lies toward the HIP from here.
-      const BvhHit next = bvh.first_hit(p, hip, Faces::front, tolerance);
-      if (!next.hit()) {  // nothing in the way: the HIP is outside and reachable
-        p = hip;
-        count = 0;
-        break;
-      }
-      if (next.primitive != c[0].primitive) {
-        const Candidate face = c[0];
-        const Candidate other = stop_before(next, hip);
-        if (rises_above(bvh.triangle(next.primitive), face, epsilon)) {
-          c[count++] = other;  // a concave crease: both faces hold the proxy
-          last_clamped = false;
-        } else {
-          c[0] = other;  // past a convex edge: the face beyond takes over
-          last_clamped = true;
-          last_corner = corner;
+    bool at_edge = false;
+    glm::dvec3 nearest(0.0);
+    if (s.found) {
+      int kept = 0;
+      for (int i = 0; i < count; ++i) {
+        if (s.mask & (1u << i)) {
+          c[kept] = c[i];
+          c[kept++].multiplier = s.multiplier[i];
         }
+      }
+      count = kept;
+      glm::dvec3 goal = s.point;
+      if (offered == 1 && count == 1) {
+        // On one face with nothing else in play: walk to the nearest point of the triangle, not of its
+        // plane, so the proxy settles on an edge or vertex where that is the surface's nearest point.
+        const Bvh::Triangle& tri = bvh.triangle(c[0].primitive);
+        nearest = closest_point_on_triangle(hip, glm::dvec3(tri.vertices[0]), glm::dvec3(tri.vertices[1]),
+                                            glm::dvec3(tri.vertices[2]));
+        const glm::dvec3 lifted = nearest + (c[0].offset - glm::dot(c[0].normal, nearest)) * c[0].normal;
+        at_edge = glm::dot(lifted - goal, lifted - goal) > tolerance * tolerance;
+        goal = lifted;
+        // Handed back to the edge or vertex it was handed over from: that is the surface's nearest point.
+        if (at_edge && handed_over && glm::distance(nearest, handover_from) < tolerance) break;
+      }
+      const glm::dvec3 path = goal - p;
+      if (glm::dot(path, path) > 1e-24) {  // 1e-12 mm
+        const BvhHit hit = bvh.first_hit(p, goal, Faces::front, tolerance);
+        if (hit.hit()) {
+          c[count++] = stop_before(hit, goal);
+          handed_over = false;
+          continue;
+        }
+        p = goal;
+      }
+      if (!at_edge) {
+        if (count == 0 || supported(bvh, c, count, p, epsilon)) break;  // free at the HIP, or resting
+        count = 0;  // followed its planes past the end of their triangles: find the constraints again
+        handed_over = false;
         continue;
       }
-      // Its own face is in the way: walk on it to its nearest point (then look again from there).
     }
-    const glm::dvec3 path = goal - p;
-    if (glm::dot(path, path) > 1e-24) {  // 1e-12 mm
-      const BvhHit hit = bvh.first_hit(p, goal, Faces::front, tolerance);
-      if (hit.hit()) {
-        c[count++] = stop_before(hit, goal);
-        last_clamped = false;
-        continue;
-      }
-      p = goal;
-      if (clamped) continue;
-    } else if (clamped) {
-      break;  // at its face's nearest point, the face itself in the way: as close as it gets
+    // At the edge of its face (or wedged where no goal fits): look from here toward the HIP.
+    const BvhHit next = bvh.first_hit(p, hip, Faces::front, tolerance);
+    if (!next.hit()) {  // nothing in the way: the HIP is outside and reachable
+      p = hip;
+      count = 0;
+      break;
     }
-    if (count <= 1) break;  // free at the HIP, or resting inside a face
-    if (supported(bvh, c, count, p, epsilon)) break;
-    count = 0;  // a crease or corner past the end of its triangles: find the constraints again from here
-    last_clamped = false;
+    // Nothing new in view (its own face, or the face the last look found): as close as it gets.
+    if (!s.found || holds(c, count, next.primitive) || (seen_any && next.primitive == last_seen)) break;
+    last_seen = next.primitive;
+    seen_any = true;
+    const Candidate face = c[0];
+    const Candidate other = stop_before(next, hip);
+    if (rises_above(bvh.triangle(next.primitive), face, epsilon)) {
+      c[count++] = other;  // a concave crease: both faces hold the proxy
+      handed_over = false;
+    } else {
+      c[0] = other;  // past a convex edge: the face beyond takes over
+      handed_over = true;
+      handover_from = nearest;
+    }
   }
 
   state.position = p;
