@@ -1,6 +1,6 @@
 // God-object proxy step: continuous collision of the proxy's path against the BVH; on one face, a walk
-// to the face's nearest point and a look past its edge; on two or three (concave creases and corners),
-// the point nearest the HIP on the free side of their planes.
+// to the triangle's nearest point and a look past its edge; on two or three (concave creases and
+// corners), the point nearest the HIP on the free side of their planes.
 #include "palpate/haptics/proxy.hpp"
 
 #include <algorithm>
@@ -113,23 +113,6 @@ bool supported(const Bvh& bvh, const Candidate* c, int count, const glm::dvec3& 
   return true;
 }
 
-// Whether triangle `b` comes up in front of `face`'s plane (by more than `tolerance`): then the two
-// meet in a concave crease and both constrain the proxy; otherwise `b` lies beyond a convex edge.
-bool rises_above(const Bvh::Triangle& b, const Candidate& face, double epsilon) noexcept {
-  const double surface = face.offset - epsilon;
-  for (const glm::vec3& v : b.vertices) {
-    if (glm::dot(face.normal, glm::dvec3(v)) - surface > 1e-3 * epsilon) return true;
-  }
-  return false;
-}
-
-bool holds(const Candidate* c, int count, std::uint32_t primitive) noexcept {
-  for (int i = 0; i < count; ++i) {
-    if (c[i].primitive == primitive) return true;
-  }
-  return false;
-}
-
 }  // namespace
 
 void ProxyState::reset(glm::vec3 p) noexcept {
@@ -160,8 +143,6 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   std::uint32_t last_primitive = count > 0 ? c[0].primitive : 0;  // for a contact if the cap cuts a search short
   bool handed_over = false;     // the last look past an edge handed the proxy to the face beyond
   glm::dvec3 handover_from(0.0);  // ... from this nearest point of the face before
-  std::uint32_t last_seen = 0;    // the face the last look past an edge found
-  bool seen_any = false;
 
   // Moves p toward `to` until the path is epsilon above the plane of the triangle it ran into (not at
   // all when it starts closer than that): everything before the hit is free, so this never crosses a
@@ -220,7 +201,8 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
       }
       if (!at_edge) {
         if (count == 0 || supported(bvh, c, count, p, epsilon)) break;  // free at the HIP, or resting
-        count = 0;  // followed its planes past the end of their triangles: find the constraints again
+        // Followed its planes past the end of their triangles: find the constraints again from here.
+        count = 0;
         handed_over = false;
         continue;
       }
@@ -232,20 +214,12 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
       count = 0;
       break;
     }
-    // Nothing new in view (its own face, or the face the last look found): as close as it gets.
-    if (!s.found || holds(c, count, next.primitive) || (seen_any && next.primitive == last_seen)) break;
-    last_seen = next.primitive;
-    seen_any = true;
-    const Candidate face = c[0];
-    const Candidate other = stop_before(next, hip);
-    if (rises_above(bvh.triangle(next.primitive), face, epsilon)) {
-      c[count++] = other;  // a concave crease: both faces hold the proxy
-      handed_over = false;
-    } else {
-      c[0] = other;  // past a convex edge: the face beyond takes over
-      handed_over = true;
-      handover_from = nearest;
-    }
+    if (!s.found || next.primitive == c[0].primitive) break;  // its own face in the way: as close as it gets
+    // Past its edge: the face in view takes over (a concave one is met again as a wall on the walk).
+    c[0] = stop_before(next, hip);
+    count = 1;
+    handed_over = true;
+    handover_from = nearest;
   }
 
   state.position = p;

@@ -6,13 +6,15 @@
 // Each tick the proxy moves from where it was toward the HIP. Every segment it travels is cast against
 // the BVH (continuous collision, so a fast move through a thin plate is stopped at the plate); each
 // triangle it runs into adds its plane as a constraint. With two or three planes (a concave crease or
-// corner) the next goal is the point nearest the HIP on their free side, by an exact active-set solve.
-// With one, it is the nearest point of that triangle (lifted off it): when that lies on the triangle's
-// edge, the proxy first looks from where it is toward the HIP. A clear view means the HIP is outside and
-// reachable: contact ends. A different triangle in view either rises in front of the first (a concave
-// crease: both constrain) or lies past a convex edge (it takes over, and the proxy walks onto it). So the
-// proxy slides over convex edges and vertices and settles on them when they are the surface's nearest
-// point. A tick casts at most `max_iterations` segments; a search cut short resumes the next tick.
+// corner) the goal is the point nearest the HIP on their free side, by an exact active-set solve; if
+// that leads past the end of their triangles, the constraints are found again from there. On a lone
+// face the goal is the nearest point of the triangle itself (raised off it); when that lies on its
+// edge, the proxy looks from there toward the HIP: a clear view means the HIP is outside and reachable
+// (contact ends); another face in view takes over, and the walk goes on over it. So the proxy slides
+// over convex edges and vertices, settles on an edge or vertex that is the surface's nearest point
+// (handed back to where it came from, it stops), and meets a concave neighbour as a wall on its walk.
+// A tick casts at most `max_iterations` segments; a search cut short resumes the next tick (a tip
+// jumping right across a curved object is followed a triangle per segment).
 //
 // The proxy floats `surface_epsilon_mm` above the planes it touches. Only front faces (crossed from
 // outside, against the outward normal) stop it: meshes are closed, and a proxy that starts inside an
