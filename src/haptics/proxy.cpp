@@ -180,14 +180,21 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
       if (offered == 1 && count == 1) {
         // On one face with nothing else in play: walk to the nearest point of the triangle, not of its
         // plane, so the proxy settles on an edge or vertex where that is the surface's nearest point.
+        // (When the plane's point is more than a triangle away, it takes the plane's long stride
+        // instead and finds its footing again there: a far jump of the tip is not walked a triangle at
+        // a time.)
         const Bvh::Triangle& tri = bvh.triangle(c[0].primitive);
-        nearest = closest_point_on_triangle(hip, glm::dvec3(tri.vertices[0]), glm::dvec3(tri.vertices[1]),
-                                            glm::dvec3(tri.vertices[2]));
+        const glm::dvec3 v0(tri.vertices[0]), v1(tri.vertices[1]), v2(tri.vertices[2]);
+        nearest = closest_point_on_triangle(hip, v0, v1, v2);
         const glm::dvec3 lifted = nearest + (c[0].offset - glm::dot(c[0].normal, nearest)) * c[0].normal;
-        at_edge = glm::dot(lifted - goal, lifted - goal) > tolerance * tolerance;
-        goal = lifted;
-        // Handed back to the edge or vertex it was handed over from: that is the surface's nearest point.
-        if (at_edge && handed_over && glm::distance(nearest, handover_from) < tolerance) break;
+        const double beyond2 = glm::dot(lifted - goal, lifted - goal);
+        const double size2 = std::max({glm::dot(v1 - v0, v1 - v0), glm::dot(v2 - v1, v2 - v1), glm::dot(v0 - v2, v0 - v2)});
+        if (beyond2 <= size2) {
+          at_edge = beyond2 > tolerance * tolerance;
+          goal = lifted;
+          // Handed back to the edge or vertex it was handed over from: the surface's nearest point.
+          if (at_edge && handed_over && glm::distance(nearest, handover_from) < tolerance) break;
+        }
       }
       const glm::dvec3 path = goal - p;
       if (glm::dot(path, path) > 1e-24) {  // 1e-12 mm

@@ -1,309 +1,46 @@
-// A million random and adversarial HIP moves (fast, grazing, aimed at edges and vertices, through thin
-// plates, pressing and sliding) against closed meshes. After every tick, checked against references
-// that share no code with the BVH or the proxy:
-// - the proxy is never inside a closed mesh (ray winding count), nor on the wrong side of a plate;
-// - the contact is consistent and its spring never points into the surface;
-// - when the tip is outside and the straight path from the proxy to it is clear (brute-force segment
-//   test), the contact is released and the proxy is at the tip;
-// - while pressing and sliding, the proxy keeps up with the tip (no stuck proxy);
-// - a tick's search rarely runs into the segment cap.
+// A million random and adversarial HIP moves against closed meshes, each tick checked against
+// references independent of the BVH and the proxy (see proxy_move_tester.hpp for the checks).
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cmath>
-#include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
-#include <random>
-#include <string>
 
 #include "haptic_test_scenes.hpp"
-#include "palpate/core/bvh.hpp"
 #include "palpate/core/shapes.hpp"
-#include "palpate/haptics/force.hpp"
-#include "palpate/haptics/proxy.hpp"
+#include "proxy_move_tester.hpp"
 
 namespace palpate {
 namespace {
 
-// Sanitizer and debug builds run a tenth of the moves (never none): same code paths, bearable time.
-#if defined(__SANITIZE_ADDRESS__) || !defined(NDEBUG)
-constexpr int move_divisor = 10;
-#else
-constexpr int move_divisor = 1;
-#endif
-
-struct Options {
-  int ticks = 100000;
-  int release_check_every = 1;  // brute-force path checks are O(triangles): sample them on big meshes
-  // For a plate centred at z = 0: the tip stays within |x|, |y| <= confine_xy, so the proxy can never go
-  // round the rim, and it must stay on the side it was put (|z| > plate_top).
-  float confine_xy = 0.0f;
-  float plate_top = 0.0f;
-  // On convex and bumpy shapes, while pressing d mm and sliding, the proxy stays within d + this of the
-  // tip; a stuck proxy falls further and further behind. (Not for concave scenes, where a wall may
-  // rightly hold the proxy while the tip slides on into it.)
-  double slide_lag_allowance_mm = 0.0;
-};
-
-struct Surface {  // a point on the mesh with its face normal and a tangent
-  glm::dvec3 point, normal, tangent;
-};
-
-class MoveTester {
- public:
-  MoveTester(const Scene& scene, std::uint32_t seed, const Options& options)
-      : scene_(scene), bvh_(Bvh::build(scene)), reference_(scene), rng_(seed), options_(options) {
-    const Bounds b = world_bounds(scene);
-    lo_ = glm::dvec3(b.min);
-    hi_ = glm::dvec3(b.max);
-    const glm::dvec3 margin = 0.25 * (hi_ - lo_) + glm::dvec3(2.0);
-    lo_ -= margin;
-    hi_ += margin;
-    if (options_.confine_xy > 0.0f) {
-      lo_.x = lo_.y = -options_.confine_xy;
-      hi_.x = hi_.y = options_.confine_xy;
-    }
-    hip_ = outside_start();
-    state_.reset(glm::vec3(hip_));
-  }
-
-  void run() {
-    while (ticks_ < options_.ticks && failures_ < 10) {
-      switch (uniform_int(0, 7)) {
-        case 0: jump(); break;
-        case 1: random_walk(); break;
-        case 2: case 3: press_and_slide(); break;
-        case 4: aim_at_feature(); break;
-        case 5: graze(); break;
-        case 6: fast_through(); break;
-        default: jitter(); break;
-      }
-    }
-    ::testing::Test::RecordProperty("ticks", ticks_);
-    ::testing::Test::RecordProperty("contact_ticks", contact_ticks_);
-    ::testing::Test::RecordProperty("release_checks", release_checks_);
-    ::testing::Test::RecordProperty("capped_ticks", capped_ticks_);
-    EXPECT_GE(ticks_, options_.ticks);
-    // The moves really exercise contact and release.
-    EXPECT_GT(contact_ticks_, ticks_ / 10);
-    EXPECT_GT(release_checks_, 100);
-    // The search converges within the segment cap but for the odd jump of the tip right across a
-    // curved object, where the proxy walks round it a triangle per segment and catches up over a few
-    // ticks (the realistic sphere-slide never hits the cap).
-    EXPECT_LE(capped_ticks_, ticks_ / 100);
-  }
-
- private:
-  double uniform(double a, double b) { return std::uniform_real_distribution<double>(a, b)(rng_); }
-  int uniform_int(int a, int b) { return std::uniform_int_distribution<int>(a, b)(rng_); }
-  glm::dvec3 random_point() { return {uniform(lo_.x, hi_.x), uniform(lo_.y, hi_.y), uniform(lo_.z, hi_.z)}; }
-  glm::dvec3 random_direction() {
-    glm::dvec3 d;
-    do d = {uniform(-1, 1), uniform(-1, 1), uniform(-1, 1)};
-    while (glm::dot(d, d) > 1.0 || glm::dot(d, d) < 1e-6);
-    return glm::normalize(d);
-  }
-  glm::dvec3 confine(glm::dvec3 p) const {
-    if (options_.confine_xy > 0.0f) {
-      p.x = std::clamp(p.x, lo_.x, hi_.x);
-      p.y = std::clamp(p.y, lo_.y, hi_.y);
-    }
-    return p;
-  }
-  glm::dvec3 outside_start() {
-    if (options_.confine_xy > 0.0f) return {0.0, 0.0, options_.plate_top + 5.0};
-    return {hi_.x, hi_.y, hi_.z};
-  }
-
-  Surface surface_point() {
-    const SceneObject* object;
-    do object = &scene_.objects[std::size_t(uniform_int(0, int(scene_.objects.size()) - 1))];
-    while (!object->material.touchable);
-    const Mesh& m = object->mesh;
-    for (;;) {
-      const std::size_t t = std::size_t(uniform_int(0, int(m.triangle_count()) - 1));
-      const auto at = [&](int k) {
-        return glm::dvec3(glm::vec3(object->transform * glm::vec4(m.positions[m.indices[3 * t + std::size_t(k)]], 1.0f)));
-      };
-      const glm::dvec3 a = at(0), b = at(1), c = at(2);
-      const glm::dvec3 n = glm::cross(b - a, c - a);
-      if (glm::length(n) < 1e-12) continue;
-      double u = uniform(0, 1), v = uniform(0, 1);
-      if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
-      const glm::dvec3 p = a + u * (b - a) + v * (c - a);
-      if (options_.confine_xy > 0.0f && (std::abs(p.x) > options_.confine_xy || std::abs(p.y) > options_.confine_xy)) continue;
-      return {p, glm::normalize(n), glm::normalize(b - a)};
-    }
-  }
-
-  // One haptic tick with the HIP at `to`, and every check.
-  void tick(glm::dvec3 to, double max_lag_mm = -1.0) {
-    const glm::dvec3 before = state_.position;
-    hip_ = confine(to);
-    const Contact c = proxy_step(state_, bvh_, glm::vec3(hip_), params_);
-    ++ticks_;
-    contact_ticks_ += c.in_contact();
-    capped_ticks_ += state_.last_iterations >= params_.max_iterations;
-    const glm::dvec3 p = state_.position;
-    const glm::dvec3 h(c.hip);
-    const auto fail = [&](const std::string& what) {
-      ADD_FAILURE() << what << " at tick " << ticks_ << ": proxy (" << p.x << ", " << p.y << ", " << p.z << ") hip ("
-                    << h.x << ", " << h.y << ", " << h.z << ") before (" << before.x << ", " << before.y << ", "
-                    << before.z << ")";
-      ++failures_;
-    };
-    if (reference_.inside(p)) fail("the proxy went inside a closed mesh");
-    if (options_.plate_top != 0.0f && plate_side_ * p.z <= options_.plate_top) fail("the proxy went through the plate");
-    if (c.in_contact()) {
-      const glm::vec3 spring = c.point - c.hip;
-      if (!(std::abs(glm::length(c.normal) - 1.0f) < 1e-4f)) fail("contact normal not unit");
-      if (!(std::abs(glm::length(spring) - c.depth_mm) < 1e-4f)) fail("depth is not |SCP - HIP|");
-      if (glm::length(spring) > 1e-3f && glm::dot(spring, c.normal) < 0.99f * glm::length(spring)) {
-        fail("normal is not along SCP - HIP");
-      }
-      const ForceResult f = spring_damper(c, glm::vec3(0.0f), Material{.stiffness_n_per_mm = 1.0f}, 1e6f);
-      if (f.invalid_input || glm::dot(f.force_n, c.normal) < 0.0f) fail("the force points into the surface");
-    }
-    if (ticks_ % options_.release_check_every == 0 && !reference_.inside(h) &&
-        !reference_.segment_meets_surface(before, h)) {
-      ++release_checks_;
-      if (c.in_contact() || glm::length(p - h) > 1e-9) fail("the tip is outside with a clear path but not released");
-    }
-    if (max_lag_mm > 0.0 && c.in_contact() && c.depth_mm > max_lag_mm) fail("the proxy fell behind (stuck)");
-  }
-
-  void move_to(glm::dvec3 to, int steps, double max_lag_mm = -1.0) {
-    const glm::dvec3 from = hip_;
-    for (int i = 1; i <= steps; ++i) tick(from + (to - from) * (double(i) / steps), max_lag_mm);
-  }
-
-  void jump() { tick(random_point()); }
-
-  void random_walk() {
-    glm::dvec3 direction = random_direction();
-    const double step = std::exp(uniform(std::log(0.002), std::log(0.5)));
-    for (int i = uniform_int(50, 300); i > 0; --i) {
-      direction = glm::normalize(direction + 0.3 * random_direction());
-      glm::dvec3 next = hip_ + step * direction;
-      if (next != glm::clamp(next, lo_, hi_)) direction = -direction, next = glm::clamp(next, lo_, hi_);
-      tick(next);
-    }
-  }
-
-  // Lift the tool off and put it down 1-3 mm in front of a face (outside), press 0-4 mm, slide 2-20 mm
-  // with a varying depth, pull out.
-  void press_and_slide() {
-    const Surface s = surface_point();
-    const glm::dvec3 approach = s.point + uniform(1.0, 3.0) * s.normal;
-    if (reference_.inside(approach)) return;
-    hip_ = approach;
-    state_.reset(glm::vec3(hip_));
-    plate_side_ = hip_.z > 0.0 ? 1.0 : -1.0;
-    const double depth = uniform(0.0, 4.0);
-    move_to(s.point - depth * s.normal, uniform_int(5, 40));
-    const glm::dvec3 along = glm::normalize(glm::cross(s.normal, random_direction()));
-    const double length = uniform(2.0, 20.0);
-    const int steps = uniform_int(40, 400);
-    const glm::dvec3 start = s.point;
-    for (int i = 1; i <= steps; ++i) {
-      const double f = double(i) / steps;
-      const double d = depth * (0.6 + 0.4 * std::sin(6.0 * f));
-      const double max_lag = options_.slide_lag_allowance_mm > 0.0 ? depth + options_.slide_lag_allowance_mm : -1.0;
-      tick(start + length * f * along - d * s.normal, max_lag);
-    }
-    move_to(hip_ + uniform(2.0, 8.0) * s.normal, uniform_int(1, 20));
-  }
-
-  // Through a vertex or an edge midpoint of a random triangle, from outside to 0-3 mm past it.
-  void aim_at_feature() {
-    const Surface s = surface_point();
-    // Snap the target onto a vertex or an edge of the triangle found by the BVH's closest point.
-    const BvhHit near = bvh_.closest_point(s.point, 1.0);
-    if (!near.hit()) return;
-    const Bvh::Triangle& tri = bvh_.triangle(near.primitive);
-    const int k = uniform_int(0, 2);
-    const glm::dvec3 a(tri.vertices[std::size_t(k)]), b(tri.vertices[std::size_t((k + 1) % 3)]);
-    const glm::dvec3 target = uniform_int(0, 1) ? a : 0.5 * (a + b);
-    const glm::dvec3 in = glm::normalize(-s.normal + uniform(0.0, 1.2) * random_direction());
-    move_to(target - uniform(1.0, 8.0) * in, uniform_int(1, 3));
-    move_to(target + uniform(0.0, 3.0) * in, uniform_int(1, 20));
-    move_to(target - uniform(1.0, 8.0) * in, uniform_int(1, 10));
-  }
-
-  // Skim along a face within +/-50 um of it, crossing edges.
-  void graze() {
-    const Surface s = surface_point();
-    const glm::dvec3 along = glm::normalize(glm::cross(s.normal, random_direction()));
-    move_to(s.point + 2.0 * s.normal, 2);
-    const int steps = uniform_int(20, 200);
-    const double length = uniform(1.0, 30.0);
-    for (int i = 0; i <= steps; ++i) {
-      const double f = double(i) / steps;
-      tick(s.point + (f - 0.5) * length * along + uniform(-0.05, 0.05) * s.normal);
-    }
-  }
-
-  // From well outside, straight through the middle to the other side, in 1-3 ticks.
-  void fast_through() {
-    const glm::dvec3 centre = 0.5 * (lo_ + hi_);
-    const glm::dvec3 d = random_direction();
-    const double reach = 0.5 * glm::length(hi_ - lo_);
-    move_to(centre + reach * d, uniform_int(1, 3));
-    move_to(centre - reach * d, uniform_int(1, 3));
-  }
-
-  // Tremble at a surface point by a micrometre: the proxy must not chatter through.
-  void jitter() {
-    const Surface s = surface_point();
-    move_to(s.point + 1.0 * s.normal, 2);
-    for (int i = uniform_int(20, 80); i > 0; --i) tick(s.point + 1e-3 * random_direction() - 1e-4 * s.normal);
-  }
-
-  const Scene& scene_;
-  Bvh bvh_;
-  test::InsideReference reference_;
-  std::mt19937 rng_;
-  Options options_;
-  ProxyParams params_;
-  ProxyState state_;
-  glm::dvec3 lo_, hi_, hip_;
-  double plate_side_ = 1.0;  // +1 above the plate, -1 below
-  int ticks_ = 0, contact_ticks_ = 0, release_checks_ = 0, failures_ = 0, capped_ticks_ = 0;
-};
-
-void run(const Scene& scene, std::uint32_t seed, Options options) {
-  options.ticks = std::max(1, options.ticks / move_divisor);
-  MoveTester(scene, seed, options).run();
-}
+using test::run_proxy_moves;
 
 TEST(ProxyMoves, Cube) {
-  run(test::scene_of("cube", make_box(glm::vec3(40.0f))), 1, {.ticks = 150000, .slide_lag_allowance_mm = 1.0});
+  run_proxy_moves(test::scene_of("cube", make_box(glm::vec3(40.0f))), 1, {.ticks = 150000, .slide_lag_allowance_mm = 1.0});
 }
 
 TEST(ProxyMoves, Sphere) {
-  run(test::scene_of("sphere", make_sphere(30.0f, 1000)), 2,
+  run_proxy_moves(test::scene_of("sphere", make_sphere(30.0f, 1000)), 2,
       {.ticks = 150000, .release_check_every = 8, .slide_lag_allowance_mm = 1.0});
 }
 
 TEST(ProxyMoves, ThinPlate) {
   // 0.2 mm thick, 80 mm wide; the tip stays within 30 mm of the centre, mostly above.
-  run(test::scene_of("plate", make_box({80.0f, 80.0f, 0.2f})), 3,
+  run_proxy_moves(test::scene_of("plate", make_box({80.0f, 80.0f, 0.2f})), 3,
       {.ticks = 150000, .confine_xy = 30.0f, .plate_top = 0.1f, .slide_lag_allowance_mm = 1.0});
 }
 
 TEST(ProxyMoves, BumpySphereOfBrainSize) {
   // The paper's brain face count (22,952): a stand-in for the phantom until it is merged.
-  run(test::scene_of("bumpy sphere", make_bumpy_sphere(50.0f, 1.5f, 22952)), 4,
+  run_proxy_moves(test::scene_of("bumpy sphere", make_bumpy_sphere(50.0f, 1.5f, 22952)), 4,
       {.ticks = 200000, .release_check_every = 64, .slide_lag_allowance_mm = 3.5});
 }
 
 TEST(ProxyMoves, HollowBoxConcaveCornersFromInside) {
-  run(test::scene_of("hollow box", test::make_hollow_box(40.0f, 20.0f)), 5, {.ticks = 100000});
+  run_proxy_moves(test::scene_of("hollow box", test::make_hollow_box(40.0f, 20.0f)), 5, {.ticks = 100000});
 }
 
 TEST(ProxyMoves, CombWithNarrowSlots) {
   // 1 mm slots 6 mm deep between 2 mm teeth: concave creases and convex edges close together.
-  run(test::scene_of("comb", test::make_comb(8, 2.0f, 1.0f, 6.0f, 4.0f, 12.0f)), 6,
+  run_proxy_moves(test::scene_of("comb", test::make_comb(8, 2.0f, 1.0f, 6.0f, 4.0f, 12.0f)), 6,
       {.ticks = 150000, .release_check_every = 2});
 }
 
@@ -313,7 +50,7 @@ TEST(ProxyMoves, SeveralTouchingAndOverlappingObjects) {
   // Overlapping the first: its faces cut through the other's, making concave creases between objects.
   scene.objects.push_back({"b", make_box({10.0f, 30.0f, 10.0f}), glm::translate(glm::mat4(1.0f), {8.0f, 3.0f, 6.0f}), {}, {}});
   scene.objects.push_back({"c", make_sphere(6.0f, 300), glm::translate(glm::mat4(1.0f), {-14.0f, 0.0f, 12.0f}), {}, {}});
-  run(scene, 7, {.ticks = 100000, .release_check_every = 4});
+  run_proxy_moves(scene, 7, {.ticks = 100000, .release_check_every = 4});
 }
 
 }  // namespace
