@@ -35,7 +35,8 @@ const Prepared& prepared(std::size_t triangles) {
   auto& slot = cache[triangles];
   if (!slot) {
     slot = std::make_unique<Prepared>();
-    slot->scene.objects.push_back({"bumpy sphere", make_bumpy_sphere(radius_mm, bump_mm, triangles), glm::mat4(1.0f), {}, {}});
+    slot->scene.objects.push_back(
+        {"bumpy sphere", make_bumpy_sphere(radius_mm, bump_mm, triangles), glm::mat4(1.0f), {}, {}});
     slot->bvh = Bvh::build(slot->scene);
   }
   return *slot;
@@ -44,7 +45,8 @@ const Prepared& prepared(std::size_t triangles) {
 // A point on a tilted great circle of radius r, `s` mm along it.
 glm::vec3 on_circle(double r, double s) {
   const double a = s / r;
-  const glm::dvec3 u = glm::normalize(glm::dvec3(1, 0.3, 0.2)), v = glm::normalize(glm::cross(u, glm::dvec3(0.1, 0.2, 1)));
+  const glm::dvec3 u = glm::normalize(glm::dvec3(1, 0.3, 0.2)),
+                   v = glm::normalize(glm::cross(u, glm::dvec3(0.1, 0.2, 1)));
   return glm::vec3(r * (std::cos(a) * u + std::sin(a) * v));
 }
 
@@ -59,7 +61,8 @@ void BM_BvhBuild(benchmark::State& state) {
   state.counters["triangles"] = double(p.bvh.triangle_count());
   state.counters["bytes_per_triangle"] = double(bytes) / double(p.bvh.triangle_count());
   state.counters["ns_per_triangle"] =
-      benchmark::Counter(double(p.bvh.triangle_count()), benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
+      benchmark::Counter(double(p.bvh.triangle_count()),
+                         benchmark::Counter::kIsIterationInvariantRate | benchmark::Counter::kInvert);
 }
 
 // One tick along a path: the HIP moves 25 um per tick (2.5 cm/s at 1 kHz) on a circle of radius
@@ -71,7 +74,8 @@ void run_ticks(benchmark::State& state, double path_radius) {
   ProxyState proxy;
   // Approach from outside so a sliding proxy starts on the surface, not inside.
   proxy.reset(on_circle(radius_mm + 20.0, 0.0));
-  for (int k = 0; k <= 100; ++k) proxy_step(proxy, p.bvh, on_circle(radius_mm + 20.0 - (20.0 + radius_mm - path_radius) * k / 100.0, 0.0));
+  for (int k = 0; k <= 100; ++k)
+    proxy_step(proxy, p.bvh, on_circle(radius_mm + 20.0 - (20.0 + radius_mm - path_radius) * k / 100.0, 0.0));
   double s = 0.0;
   std::int64_t contacts = 0, iterations = 0;
   for (auto _ : state) {
@@ -86,8 +90,12 @@ void run_ticks(benchmark::State& state, double path_radius) {
   state.counters["segments_per_tick"] = double(iterations) / double(state.iterations());
 }
 
-void BM_TickFree(benchmark::State& state) { run_ticks(state, radius_mm + bump_mm + 1.0); }
-void BM_TickSliding(benchmark::State& state) { run_ticks(state, radius_mm - 2.5); }
+void BM_TickFree(benchmark::State& state) {
+  run_ticks(state, radius_mm + bump_mm + 1.0);
+}
+void BM_TickSliding(benchmark::State& state) {
+  run_ticks(state, radius_mm - 2.5);
+}
 
 // Tick-time percentiles over one slide of 4,000 ticks (~100 mm), timed one tick at a time.
 void BM_TickSlidingPercentiles(benchmark::State& state) {
@@ -98,7 +106,8 @@ void BM_TickSlidingPercentiles(benchmark::State& state) {
   for (auto _ : state) {
     ProxyState proxy;
     proxy.reset(on_circle(radius_mm + 20.0, 0.0));
-    for (int k = 0; k <= 100; ++k) proxy_step(proxy, p.bvh, on_circle(radius_mm + 20.0 - 22.5 * k / 100.0, 0.0));
+    for (int k = 0; k <= 100; ++k)
+      proxy_step(proxy, p.bvh, on_circle(radius_mm + 20.0 - 22.5 * k / 100.0, 0.0));
     for (int k = 0; k < 4000; ++k) {
       const glm::vec3 hip = on_circle(radius_mm - 2.5, slide_speed_mm_per_s * tick_s * k);
       const auto start = std::chrono::steady_clock::now();
@@ -110,7 +119,9 @@ void BM_TickSlidingPercentiles(benchmark::State& state) {
     }
   }
   std::sort(ns.begin(), ns.end());
-  const auto at = [&](double q) { return ns[std::min(ns.size() - 1, std::size_t(q * double(ns.size())))] / 1e3; };
+  const auto at = [&](double q) {
+    return ns[std::min(ns.size() - 1, std::size_t(q * double(ns.size())))] / 1e3;
+  };
   state.counters["p50_us"] = at(0.5);
   state.counters["p99_us"] = at(0.99);
   state.counters["p999_us"] = at(0.999);

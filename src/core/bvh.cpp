@@ -12,17 +12,20 @@ namespace {
 
 constexpr float no_entry = std::numeric_limits<float>::infinity();
 
-glm::dvec3 vertex(const Bvh::Triangle& tri, int k) noexcept { return glm::dvec3(tri.vertices[std::size_t(k)]); }
+glm::dvec3 vertex(const Bvh::Triangle& tri, int k) noexcept {
+  return glm::dvec3(tri.vertices[std::size_t(k)]);
+}
 
 // Where the segment (origin, 1 / direction) enters the box, in segment parameter, or no_entry when it
 // misses it or enters after t_max.
-[[gnu::always_inline]] inline float entry(const Bvh::Node& node, const glm::vec3& origin, const glm::vec3& inverse,
-                                          float t_max) noexcept {
+[[gnu::always_inline]] inline float entry(const Bvh::Node& node, const glm::vec3& origin,
+                                          const glm::vec3& inverse, float t_max) noexcept {
   const float x1 = (node.min.x - origin.x) * inverse.x, x2 = (node.max.x - origin.x) * inverse.x;
   const float y1 = (node.min.y - origin.y) * inverse.y, y2 = (node.max.y - origin.y) * inverse.y;
   const float z1 = (node.min.z - origin.z) * inverse.z, z2 = (node.max.z - origin.z) * inverse.z;
   const float t_in = std::max(std::max(std::min(x1, x2), std::min(y1, y2)), std::max(std::min(z1, z2), 0.0f));
-  const float t_out = std::min(std::min(std::max(x1, x2), std::max(y1, y2)), std::min(std::max(z1, z2), t_max));
+  const float t_out =
+      std::min(std::min(std::max(x1, x2), std::max(y1, y2)), std::min(std::max(z1, z2), t_max));
   return t_in <= t_out ? t_in : no_entry;
 }
 
@@ -30,8 +33,9 @@ glm::dvec3 vertex(const Bvh::Triangle& tri, int k) noexcept { return glm::dvec3(
 // det(d, p, q) of the vertices relative to `from`; a shared edge gives its two triangles exactly
 // opposite values, so no segment slips between them. Values within their rounding error count as zero
 // (the triangle is inflated by ~1e-16 of its size), which also closes the gaps at shared vertices.
-[[gnu::always_inline]] inline bool cross_triangle(const Bvh::Triangle& tri, const glm::dvec3& from, const glm::dvec3& d,
-                                                  Faces faces, double start_tolerance, double& t) noexcept {
+[[gnu::always_inline]] inline bool cross_triangle(const Bvh::Triangle& tri, const glm::dvec3& from,
+                                                  const glm::dvec3& d, Faces faces, double start_tolerance,
+                                                  double& t) noexcept {
   const glm::dvec3 v0 = vertex(tri, 0), v1 = vertex(tri, 1), v2 = vertex(tri, 2);
   const glm::dvec3 n = glm::cross(v1 - v0, v2 - v0);
   const glm::dvec3 a = v0 - from;
@@ -83,7 +87,8 @@ glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, c
   const double vb = d5 * d2 - d1 * d6;
   if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
   const double va = d3 * d6 - d5 * d4;
-  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
   const double denominator = va + vb + vc;
   if (denominator <= 0.0) return a;  // degenerate (zero-area) triangle: any vertex is as good
   return a + ab * (vb / denominator) + ac * (vc / denominator);
@@ -101,9 +106,10 @@ Bounds Bvh::bounds() const noexcept {
 
 void Bvh::locate(std::uint32_t primitive, int& object, int& triangle) const noexcept {
   const std::uint32_t id = triangles_[primitive].id;
-  const auto range = std::upper_bound(objects_.begin(), objects_.end(), id,
-                                      [](std::uint32_t value, const ObjectRange& r) { return value < r.first_id; }) -
-                     1;
+  const auto range =
+      std::upper_bound(objects_.begin(), objects_.end(), id,
+                       [](std::uint32_t value, const ObjectRange& r) { return value < r.first_id; }) -
+      1;
   object = range->object;
   triangle = int(id - range->first_id);
 }

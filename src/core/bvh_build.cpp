@@ -32,10 +32,18 @@ constexpr std::uint32_t max_sah_depth = 48;
 using float4 = float __attribute__((vector_size(16)));
 using int4 = std::int32_t __attribute__((vector_size(16)));
 
-float4 min4(float4 a, float4 b) noexcept { return a < b ? a : b; }
-float4 max4(float4 a, float4 b) noexcept { return a > b ? a : b; }
-float4 splat(float x) noexcept { return float4{x, x, x, x}; }
-float4 load(const glm::vec3& v, float w) noexcept { return float4{v.x, v.y, v.z, w}; }
+float4 min4(float4 a, float4 b) noexcept {
+  return a < b ? a : b;
+}
+float4 max4(float4 a, float4 b) noexcept {
+  return a > b ? a : b;
+}
+float4 splat(float x) noexcept {
+  return float4{x, x, x, x};
+}
+float4 load(const glm::vec3& v, float w) noexcept {
+  return float4{v.x, v.y, v.z, w};
+}
 
 constexpr float huge = std::numeric_limits<float>::max();
 
@@ -89,9 +97,11 @@ struct Binning {
   float4 scale;   // bins per unit of doubled centroid, per axis (0 on a flat axis)
 
   Binning(const Box& centroids, std::uint32_t references) noexcept
-      : count(int(std::min<std::uint32_t>(bin_count, std::max<std::uint32_t>(4, references)))), origin(centroids.min) {
+      : count(int(std::min<std::uint32_t>(bin_count, std::max<std::uint32_t>(4, references)))),
+        origin(centroids.min) {
     const float4 extent = centroids.max - centroids.min;
-    for (int a = 0; a < 4; ++a) scale[a] = a < 3 && extent[a] > 0.0f ? float(count) * 0.99999f / extent[a] : 0.0f;
+    for (int a = 0; a < 4; ++a)
+      scale[a] = a < 3 && extent[a] > 0.0f ? float(count) * 0.99999f / extent[a] : 0.0f;
   }
   int4 bins(const Reference& r) const noexcept {
     const int4 b = __builtin_convertvector((r.centroid2() - origin) * scale, int4);
@@ -228,8 +238,8 @@ Bvh Bvh::build(const Scene& scene) {
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t i = mesh.indices[3 * t + k];
         if (i >= mesh.positions.size()) {
-          throw Error(what + ": triangle " + std::to_string(t) + " uses vertex " + std::to_string(i) + " of " +
-                      std::to_string(mesh.positions.size()));
+          throw Error(what + ": triangle " + std::to_string(t) + " uses vertex " + std::to_string(i) +
+                      " of " + std::to_string(mesh.positions.size()));
         }
         corners.push_back(base + i);
         box.grow(load(world[base + i], 0.0f));
@@ -248,7 +258,8 @@ Bvh Bvh::build(const Scene& scene) {
   // Slab tests run in float: pad every box by a few float roundings of the largest coordinate so a
   // segment that touches a triangle always enters its boxes.
   const glm::vec3 largest = glm::max(glm::abs(root_bounds.lower()), glm::abs(root_bounds.upper()));
-  const glm::vec3 margin(16.0f * std::numeric_limits<float>::epsilon() * std::max({largest.x, largest.y, largest.z, 1.0f}));
+  const glm::vec3 margin(16.0f * std::numeric_limits<float>::epsilon() *
+                         std::max({largest.x, largest.y, largest.z, 1.0f}));
 
   bvh.nodes_.reserve(2 * refs.size());
   bvh.nodes_.push_back({});
@@ -270,7 +281,8 @@ Bvh Bvh::build(const Scene& scene) {
     if (task.depth < max_sah_depth) split = best_split(first, count, task.centroids);
     Box child_bounds[2], child_centroids[2];
     std::uint32_t left_count = 0;
-    if (split.axis >= 0) left_count = partition(first, count, split, task.centroids, child_bounds, child_centroids);
+    if (split.axis >= 0)
+      left_count = partition(first, count, split, task.centroids, child_bounds, child_centroids);
     if (left_count == 0 || left_count == count) {
       child_bounds[0] = child_bounds[1] = child_centroids[0] = child_centroids[1] = Box{};
       left_count = split_at_median(first, count, task.centroids, child_bounds, child_centroids);
@@ -281,15 +293,18 @@ Bvh Bvh::build(const Scene& scene) {
     bvh.nodes_.push_back({});
     // Right pushed first so the left subtree is laid out right after the pair (depth-first).
     const std::uint32_t depth = task.depth + 1;
-    stack.push_back({node.first + 1, depth, task.begin + left_count, task.end, child_bounds[1], child_centroids[1]});
-    stack.push_back({node.first, depth, task.begin, task.begin + left_count, child_bounds[0], child_centroids[0]});
+    stack.push_back(
+        {node.first + 1, depth, task.begin + left_count, task.end, child_bounds[1], child_centroids[1]});
+    stack.push_back(
+        {node.first, depth, task.begin, task.begin + left_count, child_bounds[0], child_centroids[0]});
   }
   bvh.nodes_.shrink_to_fit();
 
   bvh.triangles_.resize(refs.size());
   for (std::size_t i = 0; i < refs.size(); ++i) {
     const std::uint32_t id = refs[i].id();
-    bvh.triangles_[i] = {{world[corners[3 * id]], world[corners[3 * id + 1]], world[corners[3 * id + 2]]}, id};
+    bvh.triangles_[i] = {{world[corners[3 * id]], world[corners[3 * id + 1]], world[corners[3 * id + 2]]},
+                         id};
   }
   return bvh;
 }

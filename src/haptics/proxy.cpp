@@ -28,12 +28,14 @@ struct Candidate {
 
 struct Solution {
   bool found = false;
-  unsigned mask = 0;        // which candidates the minimum rests on
-  glm::dvec3 point{0.0};    // the minimum
+  unsigned mask = 0;      // which candidates the minimum rests on
+  glm::dvec3 point{0.0};  // the minimum
   double multiplier[max_candidates] = {};
 };
 
-bool finite(glm::vec3 v) noexcept { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(glm::vec3 v) noexcept {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 // Subsets of up to three of four candidates, smallest first, as bit masks (listing them beats
 // counting bits at run time).
@@ -100,7 +102,8 @@ Solution solve(const Candidate* c, int count, const glm::dvec3& hip, double tole
 
 // Whether the proxy still lies over every triangle it rests on (within `tolerance` of their edges).
 // When it does not, it has followed their planes past the end of the triangles into free space.
-bool supported(const Bvh& bvh, const Candidate* c, int count, const glm::dvec3& p, double tolerance) noexcept {
+bool supported(const Bvh& bvh, const Candidate* c, int count, const glm::dvec3& p,
+               double tolerance) noexcept {
   for (int i = 0; i < count; ++i) {
     const Bvh::Triangle& tri = bvh.triangle(c[i].primitive);
     for (int e = 0; e < 3; ++e) {
@@ -137,12 +140,14 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   int count = 0;
   for (int i = 0; i < state.constraint_count; ++i) {
     const ProxyConstraint& k = state.constraints[std::size_t(i)];
-    if (glm::dot(k.normal, hip) < k.offset - epsilon) c[count++] = {k.normal, k.offset, k.primitive, k.multiplier};
+    if (glm::dot(k.normal, hip) < k.offset - epsilon)
+      c[count++] = {k.normal, k.offset, k.primitive, k.multiplier};
   }
   glm::dvec3 p = state.position;
-  std::uint32_t last_primitive = count > 0 ? c[0].primitive : 0;  // for a contact if the cap cuts a search short
-  bool handed_over = false;     // the last look past an edge handed the proxy to the face beyond
-  glm::dvec3 handover_from(0.0);  // ... from this nearest point of the face before
+  std::uint32_t last_primitive =
+      count > 0 ? c[0].primitive : 0;  // for a contact if the cap cuts a search short
+  bool handed_over = false;            // the last look past an edge handed the proxy to the face beyond
+  glm::dvec3 handover_from(0.0);       // ... from this nearest point of the face before
 
   // Moves p toward `to` until the path is epsilon above the plane of the triangle it ran into (not at
   // all when it starts closer than that): everything before the hit is free, so this never crosses a
@@ -188,7 +193,8 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
         nearest = closest_point_on_triangle(hip, v0, v1, v2);
         const glm::dvec3 lifted = nearest + (c[0].offset - glm::dot(c[0].normal, nearest)) * c[0].normal;
         const double beyond2 = glm::dot(lifted - goal, lifted - goal);
-        const double size2 = std::max({glm::dot(v1 - v0, v1 - v0), glm::dot(v2 - v1, v2 - v1), glm::dot(v0 - v2, v0 - v2)});
+        const double size2 =
+            std::max({glm::dot(v1 - v0, v1 - v0), glm::dot(v2 - v1, v2 - v1), glm::dot(v0 - v2, v0 - v2)});
         if (beyond2 <= size2) {
           at_edge = beyond2 > tolerance * tolerance;
           goal = lifted;
@@ -257,8 +263,9 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
     contact.normal = glm::vec3(spring / depth);
   } else {
     const Bvh::Triangle& tri = bvh.triangle(primary);
-    contact.normal = glm::vec3(glm::normalize(glm::cross(glm::dvec3(tri.vertices[1]) - glm::dvec3(tri.vertices[0]),
-                                                         glm::dvec3(tri.vertices[2]) - glm::dvec3(tri.vertices[0]))));
+    contact.normal =
+        glm::vec3(glm::normalize(glm::cross(glm::dvec3(tri.vertices[1]) - glm::dvec3(tri.vertices[0]),
+                                            glm::dvec3(tri.vertices[2]) - glm::dvec3(tri.vertices[0]))));
   }
   contact.depth_mm = float(depth);
   return contact;

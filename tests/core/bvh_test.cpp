@@ -32,9 +32,11 @@ std::vector<WorldTriangle> world_triangles(const Scene& scene) {
     const SceneObject& obj = scene.objects[o];
     if (!obj.material.touchable) continue;
     const auto at = [&](std::size_t corner) {
-      return glm::dvec3(glm::vec3(obj.transform * glm::vec4(obj.mesh.positions[obj.mesh.indices[corner]], 1.0f)));
+      return glm::dvec3(
+          glm::vec3(obj.transform * glm::vec4(obj.mesh.positions[obj.mesh.indices[corner]], 1.0f)));
     };
-    for (std::size_t t = 0; t < obj.mesh.triangle_count(); ++t) out.push_back({at(3 * t), at(3 * t + 1), at(3 * t + 2), int(o), int(t)});
+    for (std::size_t t = 0; t < obj.mesh.triangle_count(); ++t)
+      out.push_back({at(3 * t), at(3 * t + 1), at(3 * t + 2), int(o), int(t)});
   }
   return out;
 }
@@ -45,7 +47,8 @@ struct ReferenceHit {
   int object = -1, triangle = -1;
 };
 
-ReferenceHit brute_first_hit(const std::vector<WorldTriangle>& tris, glm::dvec3 from, glm::dvec3 to, bool front_only) {
+ReferenceHit brute_first_hit(const std::vector<WorldTriangle>& tris, glm::dvec3 from, glm::dvec3 to,
+                             bool front_only) {
   ReferenceHit best;
   const glm::dvec3 d = to - from;
   for (const WorldTriangle& tri : tris) {
@@ -110,7 +113,11 @@ TEST(Bvh, EveryTriangleSitsInExactlyOneLeafInsideEveryBoxAbove) {
   std::vector<int> seen(bvh.triangle_count(), 0);
   std::vector<int> ids(bvh.triangle_count(), 0);
   // Walk with the parent's box, checking containment.
-  struct Item { std::uint32_t node; glm::vec3 min, max; std::size_t depth; };
+  struct Item {
+    std::uint32_t node;
+    glm::vec3 min, max;
+    std::size_t depth;
+  };
   std::vector<Item> todo{{0, nodes[0].min, nodes[0].max, 1}};
   std::size_t deepest = 0;
   while (!todo.empty()) {
@@ -118,7 +125,8 @@ TEST(Bvh, EveryTriangleSitsInExactlyOneLeafInsideEveryBoxAbove) {
     todo.pop_back();
     const Bvh::Node& n = nodes[item.node];
     deepest = std::max(deepest, item.depth);
-    EXPECT_TRUE(glm::all(glm::greaterThanEqual(n.min, item.min)) && glm::all(glm::lessThanEqual(n.max, item.max)));
+    EXPECT_TRUE(glm::all(glm::greaterThanEqual(n.min, item.min)) &&
+                glm::all(glm::lessThanEqual(n.max, item.max)));
     if (n.count > 0) {
       EXPECT_LE(n.count, 4u);
       for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
@@ -203,7 +211,8 @@ TEST(Bvh, SegmentsThroughVerticesAndEdgesNeverSlipThrough) {
     for (const glm::vec3 target : {a, 0.5f * (a + b)}) {
       // From outside toward (through) the target, at several angles.
       for (int k = 0; k < 4; ++k) {
-        const glm::vec3 out = glm::normalize(target + 10.0f * glm::vec3(jitter(rng), jitter(rng), jitter(rng)));
+        const glm::vec3 out =
+            glm::normalize(target + 10.0f * glm::vec3(jitter(rng), jitter(rng), jitter(rng)));
         const glm::dvec3 from = glm::dvec3(target) + 20.0 * glm::dvec3(out);
         const glm::dvec3 to = glm::dvec3(target) + (glm::dvec3(target) - from) * 0.5;  // ends inside
         EXPECT_TRUE(bvh.first_hit(from, to).hit()) << "triangle " << t << " angle " << k;
@@ -218,8 +227,10 @@ TEST(Bvh, AppliesTransformsSkipsUntouchableObjectsAndNamesTheObject) {
   Scene scene;
   scene.objects.push_back({"ghost", make_box({10, 10, 10}), glm::mat4(1.0f), {}, {}});
   scene.objects.back().material.touchable = false;
-  scene.objects.push_back({"left", make_box({10, 10, 10}), glm::translate(glm::mat4(1.0f), {-20, 0, 0}), {}, {}});
-  scene.objects.push_back({"right", make_box({10, 10, 10}), glm::translate(glm::mat4(1.0f), {20, 0, 0}), {}, {}});
+  scene.objects.push_back(
+      {"left", make_box({10, 10, 10}), glm::translate(glm::mat4(1.0f), {-20, 0, 0}), {}, {}});
+  scene.objects.push_back(
+      {"right", make_box({10, 10, 10}), glm::translate(glm::mat4(1.0f), {20, 0, 0}), {}, {}});
   const Bvh bvh = Bvh::build(scene);
   EXPECT_EQ(bvh.triangle_count(), 24u);
   // Down onto the right box's top face (z = 5) at x = 21.

@@ -20,7 +20,8 @@ Scene scene_of(const std::string& name, Mesh mesh) {
 Mesh make_hollow_box(float outer_mm, float inner_mm) {
   Mesh mesh = make_box(glm::vec3(outer_mm));
   Mesh cavity = make_box(glm::vec3(inner_mm));
-  for (std::size_t t = 0; t < cavity.indices.size(); t += 3) std::swap(cavity.indices[t + 1], cavity.indices[t + 2]);
+  for (std::size_t t = 0; t < cavity.indices.size(); t += 3)
+    std::swap(cavity.indices[t + 1], cavity.indices[t + 2]);
   for (glm::vec3& n : cavity.normals) n = -n;
   append_mesh(mesh, cavity);
   return mesh;
@@ -38,12 +39,14 @@ Mesh make_comb(int teeth, float tooth_width_mm, float gap_mm, float tooth_height
   for (float x : xs) outline.push_back({x, 0.0f});
   for (int k = teeth - 1; k >= 0; --k) {
     const float left = float(k) * pitch, right = left + tooth_width_mm;
-    outline.insert(outline.end(), {{right, base_height_mm}, {right, top}, {left, top}, {left, base_height_mm}});
+    outline.insert(outline.end(),
+                   {{right, base_height_mm}, {right, top}, {left, top}, {left, base_height_mm}});
   }
   // Cap quads: the base cut at every tooth side, then the teeth.
   std::vector<std::array<glm::vec2, 4>> quads;
   for (std::size_t i = 0; i + 1 < xs.size(); ++i) {
-    quads.push_back({{{xs[i], 0.0f}, {xs[i + 1], 0.0f}, {xs[i + 1], base_height_mm}, {xs[i], base_height_mm}}});
+    quads.push_back(
+        {{{xs[i], 0.0f}, {xs[i + 1], 0.0f}, {xs[i + 1], base_height_mm}, {xs[i], base_height_mm}}});
   }
   for (int k = 0; k < teeth; ++k) {
     const float left = float(k) * pitch, right = left + tooth_width_mm;
@@ -61,7 +64,8 @@ Mesh make_comb(int teeth, float tooth_width_mm, float gap_mm, float tooth_height
     mesh.indices.insert(mesh.indices.end(), {a, b, c, a, c, d});
   };
   for (const auto& q : quads) {
-    quad(vertex(q[0], depth_mm), vertex(q[1], depth_mm), vertex(q[2], depth_mm), vertex(q[3], depth_mm));  // +z cap
+    quad(vertex(q[0], depth_mm), vertex(q[1], depth_mm), vertex(q[2], depth_mm),
+         vertex(q[3], depth_mm));                                                          // +z cap
     quad(vertex(q[0], 0.0f), vertex(q[3], 0.0f), vertex(q[2], 0.0f), vertex(q[1], 0.0f));  // -z cap
   }
   for (std::size_t i = 0; i < outline.size(); ++i) {
@@ -79,7 +83,10 @@ InsideReference::InsideReference(const Scene& scene) {
       return glm::dvec3(glm::vec3(object.transform * glm::vec4(object.mesh.positions[i], 1.0f)));
     };
     for (std::size_t t = 0; t + 2 < object.mesh.indices.size(); t += 3) {
-      Triangle tri{world(object.mesh.indices[t]), world(object.mesh.indices[t + 1]), world(object.mesh.indices[t + 2]), {}};
+      Triangle tri{world(object.mesh.indices[t]),
+                   world(object.mesh.indices[t + 1]),
+                   world(object.mesh.indices[t + 2]),
+                   {}};
       tri.normal = glm::cross(tri.b - tri.a, tri.c - tri.a);
       triangles_.push_back(tri);
     }
@@ -120,7 +127,8 @@ int InsideReference::axis_winding(const Grid& g, glm::dvec3 p) const {
   const int a = g.axis, u = (a + 1) % 3, v = (a + 2) % 3;
   p[u] += 1.41421356e-9;
   p[v] += 0.73205081e-9;
-  const int k = int(std::floor((p[u] - g.origin.x) / g.cell.x)), j = int(std::floor((p[v] - g.origin.y) / g.cell.y));
+  const int k = int(std::floor((p[u] - g.origin.x) / g.cell.x)),
+            j = int(std::floor((p[v] - g.origin.y) / g.cell.y));
   if (k < 0 || j < 0 || k >= g.cells || j >= g.cells) return 0;
   int winding = 0;
   for (const std::uint32_t i : g.bins[std::size_t(j * g.cells + k)]) {

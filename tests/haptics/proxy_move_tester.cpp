@@ -48,13 +48,28 @@ class MoveTester {
   void run() {
     while (ticks_ < options_.ticks && failures_ < 10) {
       switch (uniform_int(0, 7)) {
-        case 0: jump(); break;
-        case 1: random_walk(); break;
-        case 2: case 3: press_and_slide(); break;
-        case 4: aim_at_feature(); break;
-        case 5: graze(); break;
-        case 6: fast_through(); break;
-        default: jitter(); break;
+        case 0:
+          jump();
+          break;
+        case 1:
+          random_walk();
+          break;
+        case 2:
+        case 3:
+          press_and_slide();
+          break;
+        case 4:
+          aim_at_feature();
+          break;
+        case 5:
+          graze();
+          break;
+        case 6:
+          fast_through();
+          break;
+        default:
+          jitter();
+          break;
       }
     }
     ::testing::Test::RecordProperty("ticks", ticks_);
@@ -99,7 +114,8 @@ class MoveTester {
     for (;;) {
       const std::size_t t = std::size_t(uniform_int(0, int(m.triangle_count()) - 1));
       const auto at = [&](int k) {
-        return glm::dvec3(glm::vec3(object->transform * glm::vec4(m.positions[m.indices[3 * t + std::size_t(k)]], 1.0f)));
+        return glm::dvec3(
+            glm::vec3(object->transform * glm::vec4(m.positions[m.indices[3 * t + std::size_t(k)]], 1.0f)));
       };
       const glm::dvec3 a = at(0), b = at(1), c = at(2);
       const glm::dvec3 n = glm::cross(b - a, c - a);
@@ -107,7 +123,9 @@ class MoveTester {
       double u = uniform(0, 1), v = uniform(0, 1);
       if (u + v > 1.0) u = 1.0 - u, v = 1.0 - v;
       const glm::dvec3 p = a + u * (b - a) + v * (c - a);
-      if (options_.confine_xy > 0.0f && (std::abs(p.x) > options_.confine_xy || std::abs(p.y) > options_.confine_xy)) continue;
+      if (options_.confine_xy > 0.0f &&
+          (std::abs(p.x) > options_.confine_xy || std::abs(p.y) > options_.confine_xy))
+        continue;
       return {p, glm::normalize(n), glm::normalize(b - a)};
     }
   }
@@ -123,13 +141,14 @@ class MoveTester {
     const glm::dvec3 p = state_.position;
     const glm::dvec3 h(c.hip);
     const auto fail = [&](const std::string& what) {
-      ADD_FAILURE() << what << " at tick " << ticks_ << ": proxy (" << p.x << ", " << p.y << ", " << p.z << ") hip ("
-                    << h.x << ", " << h.y << ", " << h.z << ") before (" << before.x << ", " << before.y << ", "
-                    << before.z << ")";
+      ADD_FAILURE() << what << " at tick " << ticks_ << ": proxy (" << p.x << ", " << p.y << ", " << p.z
+                    << ") hip (" << h.x << ", " << h.y << ", " << h.z << ") before (" << before.x << ", "
+                    << before.y << ", " << before.z << ")";
       ++failures_;
     };
     if (reference_.inside(p)) fail("the proxy went inside a closed mesh");
-    if (options_.plate_top != 0.0f && plate_side_ * p.z <= options_.plate_top) fail("the proxy went through the plate");
+    if (options_.plate_top != 0.0f && plate_side_ * p.z <= options_.plate_top)
+      fail("the proxy went through the plate");
     if (c.in_contact()) {
       const glm::vec3 spring = c.point - c.hip;
       if (!(std::abs(glm::length(c.normal) - 1.0f) < 1e-4f)) fail("contact normal not unit");
@@ -143,7 +162,8 @@ class MoveTester {
     if (ticks_ % options_.release_check_every == 0 && !reference_.inside(h) &&
         !reference_.segment_meets_surface(before, h)) {
       ++release_checks_;
-      if (c.in_contact() || glm::length(p - h) > 1e-9) fail("the tip is outside with a clear path but not released");
+      if (c.in_contact() || glm::length(p - h) > 1e-9)
+        fail("the tip is outside with a clear path but not released");
     }
     if (max_lag_mm > 0.0 && c.in_contact() && c.depth_mm > max_lag_mm) fail("the proxy fell behind (stuck)");
   }
@@ -184,7 +204,8 @@ class MoveTester {
     for (int i = 1; i <= steps; ++i) {
       const double f = double(i) / steps;
       const double d = depth * (0.6 + 0.4 * std::sin(6.0 * f));
-      const double max_lag = options_.slide_lag_allowance_mm > 0.0 ? depth + options_.slide_lag_allowance_mm : -1.0;
+      const double max_lag =
+          options_.slide_lag_allowance_mm > 0.0 ? depth + options_.slide_lag_allowance_mm : -1.0;
       tick(start + length * f * along - d * s.normal, max_lag);
     }
     move_to(hip_ + uniform(2.0, 8.0) * s.normal, uniform_int(1, 20));

@@ -15,7 +15,7 @@
 namespace palpate::test {
 
 struct MoveOptions {
-  int ticks = 100000;  // a tenth in sanitizer and debug builds (never none)
+  int ticks = 100000;           // a tenth in sanitizer and debug builds (never none)
   int release_check_every = 1;  // brute-force path checks are O(triangles): sample them on big meshes
   // For a plate centred at z = 0: the tip stays within |x|, |y| <= confine_xy, so the proxy can never go
   // round the rim, and it must stay on the side it was put (|z| > plate_top).

@@ -89,7 +89,8 @@ SlideCounts sphere_slide(std::size_t triangles, int cycles) {
       // Stuck: the proxy trails the tip by more than the deepest press plus the bumps, or holds on
       // once the tip is back out.
       if (c.in_contact() && c.depth_mm > 4.0f + 3.0f) stuck = true;
-      if (tick == 3999 && (c.in_contact() || glm::length(state.position - glm::dvec3(glm::vec3(hip))) > 1e-9)) stuck = true;
+      if (tick == 3999 && (c.in_contact() || glm::length(state.position - glm::dvec3(glm::vec3(hip))) > 1e-9))
+        stuck = true;
     }
     counts.stuck_cycles += stuck;
   }
@@ -108,8 +109,12 @@ void expect_clean(std::size_t triangles, int cycles) {
   ::testing::Test::RecordProperty("max_force_n_x1000", int(1000 * counts.max_force_n));
 }
 
-TEST(SphereSlide, TableOneBrainSize) { expect_clean(22952, reduced ? 10 : 50); }
-TEST(SphereSlide, TableOneSkinSize) { expect_clean(53021, reduced ? 5 : 50); }
+TEST(SphereSlide, TableOneBrainSize) {
+  expect_clean(22952, reduced ? 10 : 50);
+}
+TEST(SphereSlide, TableOneSkinSize) {
+  expect_clean(53021, reduced ? 5 : 50);
+}
 TEST(SphereSlide, MillionTriangles) {
   if (reduced) GTEST_SKIP() << "a million-triangle mesh is for optimised, unsanitized builds";
   expect_clean(1000000, 50);

@@ -32,8 +32,8 @@ Contact move(ProxyState& state, const Bvh& bvh, glm::dvec3& hip, glm::dvec3 to, 
 
 void expect_near(glm::dvec3 got, glm::dvec3 want, double tolerance, const char* what) {
   EXPECT_LE(glm::length(got - want), tolerance)
-      << what << ": got (" << got.x << ", " << got.y << ", " << got.z << "), want (" << want.x << ", " << want.y
-      << ", " << want.z << ")";
+      << what << ": got (" << got.x << ", " << got.y << ", " << got.z << "), want (" << want.x << ", "
+      << want.y << ", " << want.z << ")";
 }
 
 // The 40 mm cube: faces at +/-20.
@@ -60,7 +60,8 @@ TEST_F(ProxyOnCube, RestsOnTheFaceAboveTheHipWithTheFaceNormal) {
   expect_near(state.position, {3.0, -4.0, 20.0 + eps}, 1e-9, "proxy");
   EXPECT_EQ(c.object, 0);
   const Mesh& cube = scene.objects[0].mesh;
-  for (int k = 0; k < 3; ++k) EXPECT_EQ(cube.positions[cube.indices[3 * std::size_t(c.triangle) + k]].z, 20.0f);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_EQ(cube.positions[cube.indices[3 * std::size_t(c.triangle) + k]].z, 20.0f);
   EXPECT_NEAR(c.normal.z, 1.0f, 1e-6f);
   EXPECT_NEAR(c.depth_mm, 2.5 + eps, 1e-5);
   EXPECT_NEAR(glm::length(glm::vec3(c.point) - c.hip), c.depth_mm, 1e-5f);
@@ -191,10 +192,10 @@ TEST_F(ProxyInCavity, ACreaseHoldsTheProxyOnTheCreaseLine) {
 // the apex is a concave vertex of four faces.
 Mesh make_pit() {
   Mesh m;
-  m.positions = {{-10, -10, 0}, {10, -10, 0}, {10, 10, 0}, {-10, 10, 0}, {0, 0, -5},
+  m.positions = {{-10, -10, 0},   {10, -10, 0},   {10, 10, 0},   {-10, 10, 0},  {0, 0, -5},
                  {-10, -10, -20}, {10, -10, -20}, {10, 10, -20}, {-10, 10, -20}};
-  m.indices = {0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4,  // the cup
-               5, 7, 6, 5, 8, 7,                    // bottom
+  m.indices = {0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4,                                       // the cup
+               5, 7, 6, 5, 8, 7,                                                         // bottom
                0, 5, 6, 0, 6, 1, 1, 6, 7, 1, 7, 2, 2, 7, 8, 2, 8, 3, 3, 8, 5, 3, 5, 0};  // sides
   compute_vertex_normals(m);
   return m;
@@ -239,8 +240,10 @@ TEST(ProxyAmongObjects, ReportsTheSceneIndexOfTheObjectTouched) {
   Scene scene;
   scene.objects.push_back({"ghost", make_box(glm::vec3(10.0f)), glm::mat4(1.0f), {}, {}});
   scene.objects.back().material.touchable = false;
-  scene.objects.push_back({"left", make_box(glm::vec3(10.0f)), glm::translate(glm::mat4(1.0f), {-20.0f, 0.0f, 0.0f}), {}, {}});
-  scene.objects.push_back({"right", make_box(glm::vec3(10.0f)), glm::translate(glm::mat4(1.0f), {20.0f, 0.0f, 0.0f}), {}, {}});
+  scene.objects.push_back(
+      {"left", make_box(glm::vec3(10.0f)), glm::translate(glm::mat4(1.0f), {-20.0f, 0.0f, 0.0f}), {}, {}});
+  scene.objects.push_back(
+      {"right", make_box(glm::vec3(10.0f)), glm::translate(glm::mat4(1.0f), {20.0f, 0.0f, 0.0f}), {}, {}});
   const Bvh bvh = Bvh::build(scene);
   ProxyState state;
   glm::dvec3 hip{-20.0, 1.0, 10.0};

@@ -22,12 +22,12 @@
 namespace palpate {
 
 struct BvhHit {
-  int object = -1;            // scene object index; -1 when nothing was hit
-  int triangle = -1;          // triangle index in that object's mesh
-  glm::vec3 point{0.0f};      // the hit (or closest) point, world mm
-  float t = 0.0f;             // first_hit: segment parameter in [0, 1]; closest_point: 0
-  float distance_mm = 0.0f;   // closest_point: distance from the query point; first_hit: 0
-  glm::vec3 normal{0.0f};     // the triangle's unit face normal, outward (counter-clockwise winding)
+  int object = -1;              // scene object index; -1 when nothing was hit
+  int triangle = -1;            // triangle index in that object's mesh
+  glm::vec3 point{0.0f};        // the hit (or closest) point, world mm
+  float t = 0.0f;               // first_hit: segment parameter in [0, 1]; closest_point: 0
+  float distance_mm = 0.0f;     // closest_point: distance from the query point; first_hit: 0
+  glm::vec3 normal{0.0f};       // the triangle's unit face normal, outward (counter-clockwise winding)
   std::uint32_t primitive = 0;  // the triangle's index in the BVH (see Bvh::triangle)
 
   bool hit() const noexcept { return object >= 0; }
@@ -45,13 +45,13 @@ glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, c
 
 class Bvh {
  public:
-  struct Node {  // 32 bytes
+  struct Node {           // 32 bytes
     glm::vec3 min;        // bounds, world mm, padded outward so float slab tests stay conservative
     std::uint32_t first;  // leaf: first triangle; interior: left child (the right child is first + 1)
     glm::vec3 max;
     std::uint32_t count;  // leaf: triangle count (> 0); interior: 0
   };
-  struct Triangle {  // 40 bytes
+  struct Triangle {                     // 40 bytes
     std::array<glm::vec3, 3> vertices;  // world mm, counter-clockwise seen from outside
     std::uint32_t id;                   // the scene-wide triangle number (objects in scene order)
   };

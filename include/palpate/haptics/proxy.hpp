@@ -49,14 +49,14 @@ struct ProxyParams {
 
 // A plane the proxy rests on: n . x >= offset, the offset already raised by the surface epsilon.
 struct ProxyConstraint {
-  glm::dvec3 normal{0.0};    // unit, outward
-  double offset = 0.0;       // mm
-  double multiplier = 0.0;   // how hard the HIP pushes into it, mm (the Lagrange multiplier)
+  glm::dvec3 normal{0.0};       // unit, outward
+  double offset = 0.0;          // mm
+  double multiplier = 0.0;      // how hard the HIP pushes into it, mm (the Lagrange multiplier)
   std::uint32_t primitive = 0;  // the triangle's index in the BVH
 };
 
 struct ProxyState {
-  glm::dvec3 position{0.0};                  // the proxy (SCP), world mm
+  glm::dvec3 position{0.0};                      // the proxy (SCP), world mm
   std::array<ProxyConstraint, 3> constraints{};  // the planes active at the end of the last step
   int constraint_count = 0;
   bool placed = false;      // false until reset() or the first step, which puts the proxy at the HIP

@@ -19,11 +19,13 @@ using test::run_proxy_moves;
 // check; release checks are brute force over every triangle, hence sampled. A tip jumping deep into the
 // folds (a quarter of the moves are such jumps) takes the proxy a few ticks to follow.
 TEST(ProxyMovesOnPhantoms, Brain) {
-  run_proxy_moves(test::scene_of("brain", make_brain_phantom()), 11, {.ticks = 100000, .release_check_every = 256, .max_capped_fraction = 0.03});
+  run_proxy_moves(test::scene_of("brain", make_brain_phantom()), 11,
+                  {.ticks = 100000, .release_check_every = 256, .max_capped_fraction = 0.03});
 }
 
 TEST(ProxyMovesOnPhantoms, Skin) {
-  run_proxy_moves(test::scene_of("skin", make_skin_phantom()), 12, {.ticks = 100000, .release_check_every = 256, .max_capped_fraction = 0.03});
+  run_proxy_moves(test::scene_of("skin", make_skin_phantom()), 12,
+                  {.ticks = 100000, .release_check_every = 256, .max_capped_fraction = 0.03});
 }
 
 TEST(ProxyMovesOnPhantoms, SkinAroundBrain) {
