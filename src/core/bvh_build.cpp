@@ -1,6 +1,7 @@
 // Top-down binned SAH build (Wald 2007, "On fast construction of SAH-based bounding volume
-// hierarchies"): each node's triangles are binned by centroid into 16 slabs per axis, the split with
-// the least surface-area cost is taken, and the references are partitioned in place.
+// hierarchies"): each node's triangles are binned by centroid into up to 16 slabs along the widest
+// axis of their centroids (a sample of them in large nodes), the split with the least surface-area
+// cost is taken, and the references are partitioned in place. Nodes of up to four triangles are leaves.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -22,13 +23,13 @@ constexpr std::uint32_t sample_size = 1024;
 constexpr std::uint32_t leaf_size = 4;
 // Ids travel as float bits in a bounds lane: below 2^30 those bits are a finite float.
 constexpr std::size_t max_triangles = std::size_t(1) << 30;
-// Below this depth subtrees split at the median, so depth stays under max_sah_depth + log2(triangles)
-// and the queries' fixed traversal stack (Bvh::max_depth) cannot overflow.
+// From this depth on subtrees split at the median, so depth stays under max_sah_depth +
+// log2(triangles) and the queries' fixed traversal stack (Bvh::max_depth) cannot overflow.
 constexpr std::uint32_t max_sah_depth = 48;
 
 // Four-lane float vectors (GCC/Clang vector extensions; SSE or NEON): a box corner in lanes 0-2.
-// Binning every reference into all three axes' bins at every level is where the build spends its
-// time, and these make each bin update two vector min/max operations.
+// Binning and partitioning every reference at every level is where the build spends its time, and
+// these make each bounds update two vector min/max operations.
 using float4 = float __attribute__((vector_size(16)));
 using int4 = std::int32_t __attribute__((vector_size(16)));
 
