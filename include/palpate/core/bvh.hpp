@@ -1,0 +1,106 @@
+#pragma once
+// A bounding volume hierarchy over the world-space triangles of a scene's touchable objects, built
+// once at load. Written by hand because it is the product: the haptic tick's cost is its query cost,
+// and a general-purpose library tree (pointer nodes, virtual callbacks, allocation per query) cannot
+// give a bounded, allocation-free, cache-friendly query.
+//
+// Layout: one flat array of 32-byte nodes (two sibling children stored side by side, depth-first), and
+// the triangles copied into leaf order, 40 bytes each (three float vertices and an id), so a leaf's
+// triangles are one contiguous read. Built top-down with a binned surface-area heuristic.
+//
+// build() allocates and may throw palpate::Error; every query is const, noexcept, allocation-free and
+// safe in the haptic tick, and safe to run from several threads at once.
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <vector>
+
+#include "palpate/core/mesh.hpp"
+#include "palpate/core/scene.hpp"
+
+namespace palpate {
+
+struct BvhHit {
+  int object = -1;              // scene object index; -1 when nothing was hit
+  int triangle = -1;            // triangle index in that object's mesh
+  glm::vec3 point{0.0f};        // the hit (or closest) point, world mm
+  float t = 0.0f;               // first_hit: segment parameter in [0, 1]; closest_point: 0
+  float distance_mm = 0.0f;     // closest_point: distance from the query point; first_hit: 0
+  glm::vec3 normal{0.0f};       // the triangle's unit face normal, outward (counter-clockwise winding)
+  std::uint32_t primitive = 0;  // the triangle's index in the BVH (see Bvh::triangle)
+
+  bool hit() const noexcept { return object >= 0; }
+};
+
+// Which side of a triangle a segment may enter through to count as a hit.
+enum class Faces {
+  front,  // only from outside to inside (against the outward normal): the haptic proxy's view
+  both,   // either side
+};
+
+// The point of triangle (a, b, c) closest to p (Ericson, Real-Time Collision Detection, 5.1.5).
+glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                     const glm::dvec3& c) noexcept;
+
+class Bvh {
+ public:
+  struct Node {           // 32 bytes
+    glm::vec3 min;        // bounds, world mm, padded outward so float slab tests stay conservative
+    std::uint32_t first;  // leaf: first triangle; interior: left child (the right child is first + 1)
+    glm::vec3 max;
+    std::uint32_t count;  // leaf: triangle count (> 0); interior: 0
+  };
+  struct Triangle {                     // 40 bytes
+    std::array<glm::vec3, 3> vertices;  // world mm, counter-clockwise seen from outside
+    std::uint32_t id;                   // the scene-wide triangle number (objects in scene order)
+  };
+
+  // Deepest possible leaf (the build splits at the median below depth 48): the queries' stack size.
+  static constexpr std::size_t max_depth = 96;
+
+  Bvh() = default;
+
+  // World-space triangles of the scene's touchable objects (object transform applied). Throws
+  // palpate::Error naming the object when a mesh has out-of-range indices or non-finite positions.
+  static Bvh build(const Scene& scene);
+
+  std::size_t triangle_count() const noexcept { return triangles_.size(); }
+  std::size_t node_count() const noexcept { return nodes_.size(); }
+  // Bytes held by the nodes, the triangles and the object table.
+  std::size_t memory_bytes() const noexcept;
+  // The padded bounds of everything; zero for an empty tree.
+  Bounds bounds() const noexcept;
+
+  // The first triangle the segment from -> to crosses (smallest t), or no hit. Computed in double
+  // with a watertight edge test, so a segment through a shared edge or vertex of a closed mesh
+  // always hits one of its triangles. A front-face crossing counts when `from` is in front of the
+  // triangle's plane or at most `start_tolerance_mm` behind it (t is then 0), and `to` is on or
+  // behind the plane.
+  BvhHit first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces = Faces::front,
+                   double start_tolerance_mm = 0.0) const noexcept;
+
+  // The closest point on any triangle to `point` no farther than `max_distance_mm`, or no hit.
+  BvhHit closest_point(const glm::dvec3& point, double max_distance_mm) const noexcept;
+
+  // A triangle by its BVH index (BvhHit::primitive), for callers that need it in double precision.
+  const Triangle& triangle(std::uint32_t primitive) const noexcept { return triangles_[primitive]; }
+  // The scene object and the triangle within its mesh of a BVH triangle.
+  void locate(std::uint32_t primitive, int& object, int& triangle) const noexcept;
+
+  const std::vector<Node>& nodes() const noexcept { return nodes_; }
+
+ private:
+  struct ObjectRange {
+    std::uint32_t first_id;  // scene-wide number of the object's first triangle
+    int object;              // its index in the scene
+  };
+
+  BvhHit make_hit(std::uint32_t primitive, const glm::dvec3& point) const noexcept;
+
+  std::vector<Node> nodes_;
+  std::vector<Triangle> triangles_;
+  std::vector<ObjectRange> objects_;  // touchable objects with triangles, by first_id
+};
+
+}  // namespace palpate

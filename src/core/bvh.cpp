@@ -1,0 +1,252 @@
+// Bvh queries: segment cast and closest point, iterative with a fixed stack, no allocation.
+#include "palpate/core/bvh.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/common.hpp>
+#include <glm/geometric.hpp>
+#include <limits>
+
+namespace palpate {
+namespace {
+
+constexpr float no_entry = std::numeric_limits<float>::infinity();
+
+glm::dvec3 vertex(const Bvh::Triangle& tri, int k) noexcept {
+  return glm::dvec3(tri.vertices[std::size_t(k)]);
+}
+
+// Where the segment (origin, 1 / direction) enters the box, in segment parameter, or no_entry when it
+// misses it or enters after t_max.
+[[gnu::always_inline]] inline float entry(const Bvh::Node& node, const glm::vec3& origin,
+                                          const glm::vec3& inverse, float t_max) noexcept {
+  const float x1 = (node.min.x - origin.x) * inverse.x, x2 = (node.max.x - origin.x) * inverse.x;
+  const float y1 = (node.min.y - origin.y) * inverse.y, y2 = (node.max.y - origin.y) * inverse.y;
+  const float z1 = (node.min.z - origin.z) * inverse.z, z2 = (node.max.z - origin.z) * inverse.z;
+  const float t_in = std::max(std::max(std::min(x1, x2), std::min(y1, y2)), std::max(std::min(z1, z2), 0.0f));
+  const float t_out =
+      std::min(std::min(std::max(x1, x2), std::max(y1, y2)), std::min(std::max(z1, z2), t_max));
+  return t_in <= t_out ? t_in : no_entry;
+}
+
+// Segment from `from` along `d` against one triangle, in double. The edge values are signed volumes
+// det(d, p, q) of the vertices relative to `from`; a shared edge gives its two triangles exactly
+// opposite values, so no segment slips between them. Values within their rounding error count as zero
+// (the triangle is inflated by ~1e-16 of its size), which also closes the gaps at shared vertices.
+[[gnu::always_inline]] inline bool cross_triangle(const Bvh::Triangle& tri, const glm::dvec3& from,
+                                                  const glm::dvec3& d, Faces faces, double start_tolerance,
+                                                  double& t) noexcept {
+  const glm::dvec3 v0 = vertex(tri, 0), v1 = vertex(tri, 1), v2 = vertex(tri, 2);
+  const glm::dvec3 n = glm::cross(v1 - v0, v2 - v0);
+  const glm::dvec3 a = v0 - from;
+  const double dn = glm::dot(n, d);
+  const double start = -glm::dot(n, a);  // signed distance of `from` to the plane, times |n|
+  // The cheap plane tests first: most triangles near a short segment are not reached at all.
+  const bool front = dn < 0.0;
+  if (front) {
+    if (start + dn > 0.0) return false;  // ends in front of the plane
+    if (start < 0.0 && start * start > start_tolerance * start_tolerance * glm::dot(n, n)) return false;
+  } else {
+    if (dn == 0.0 || faces == Faces::front || start + dn < 0.0) return false;
+    if (start > 0.0 && start * start > start_tolerance * start_tolerance * glm::dot(n, n)) return false;
+  }
+  const glm::dvec3 b = v1 - from, c = v2 - from;
+  const double u = glm::dot(d, glm::cross(b, c));
+  const double v = glm::dot(d, glm::cross(c, a));
+  const double w = glm::dot(d, glm::cross(a, b));
+  const glm::dvec3 extent = glm::max(glm::max(glm::abs(a), glm::abs(b)), glm::abs(c));
+  const double reach = std::max(std::max(extent.x, extent.y), extent.z);
+  const glm::dvec3 abs_d = glm::abs(d);
+  const double zero = 1e-14 * std::max(std::max(abs_d.x, abs_d.y), abs_d.z) * reach * reach;
+  if (front ? (u > zero || v > zero || w > zero) : (u < -zero || v < -zero || w < -zero)) return false;
+  t = std::clamp(start / -dn, 0.0, 1.0);
+  return true;
+}
+
+float box_distance2(const Bvh::Node& node, const glm::vec3& p) noexcept {
+  const glm::vec3 outside = glm::max(glm::max(node.min - p, p - node.max), glm::vec3(0.0f));
+  return glm::dot(outside, outside);
+}
+
+}  // namespace
+
+glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                     const glm::dvec3& c) noexcept {
+  // Walks the Voronoi regions of the vertices, the edges and the face.
+  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) return a;
+  const glm::dvec3 bp = p - b;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) return b;
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + ab * (d1 / (d1 - d3));
+  const glm::dvec3 cp = p - c;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) return c;
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  const double denominator = va + vb + vc;
+  if (denominator <= 0.0) return a;  // degenerate (zero-area) triangle: any vertex is as good
+  return a + ab * (vb / denominator) + ac * (vc / denominator);
+}
+
+std::size_t Bvh::memory_bytes() const noexcept {
+  return nodes_.capacity() * sizeof(Node) + triangles_.capacity() * sizeof(Triangle) +
+         objects_.capacity() * sizeof(ObjectRange);
+}
+
+Bounds Bvh::bounds() const noexcept {
+  if (nodes_.empty()) return {};
+  return {nodes_[0].min, nodes_[0].max};
+}
+
+void Bvh::locate(std::uint32_t primitive, int& object, int& triangle) const noexcept {
+  const std::uint32_t id = triangles_[primitive].id;
+  const auto range =
+      std::upper_bound(objects_.begin(), objects_.end(), id,
+                       [](std::uint32_t value, const ObjectRange& r) { return value < r.first_id; }) -
+      1;
+  object = range->object;
+  triangle = int(id - range->first_id);
+}
+
+BvhHit Bvh::make_hit(std::uint32_t primitive, const glm::dvec3& point) const noexcept {
+  BvhHit hit;
+  locate(primitive, hit.object, hit.triangle);
+  hit.primitive = primitive;
+  hit.point = glm::vec3(point);
+  const Triangle& tri = triangles_[primitive];
+  const glm::dvec3 n = glm::cross(vertex(tri, 1) - vertex(tri, 0), vertex(tri, 2) - vertex(tri, 0));
+  const double length = glm::length(n);
+  hit.normal = length > 0.0 ? glm::vec3(n / length) : glm::vec3(0.0f);
+  return hit;
+}
+
+BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
+                      double start_tolerance_mm) const noexcept {
+  if (nodes_.empty()) return {};
+  const glm::dvec3 d = to - from;
+  const glm::vec3 origin(from);
+  glm::vec3 inverse;
+  for (int a = 0; a < 3; ++a) {
+    const float component = float(d[a]);
+    // A zero component becomes a tiny one of the same sign: the slab test then never sees 0 * inf.
+    inverse[a] = 1.0f / (component != 0.0f ? component : std::copysign(1e-30f, component));
+  }
+  double best_t = 2.0;  // above any segment parameter
+  std::uint32_t best = 0;
+  std::uint32_t stack[max_depth];
+  std::size_t top = 0;
+  if (entry(nodes_[0], origin, inverse, 1.0f) == no_entry) return {};
+  std::uint32_t current = 0;
+  for (;;) {
+    const Node& node = nodes_[current];
+    if (node.count > 0) {
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+        double t;
+        if (cross_triangle(triangles_[i], from, d, faces, start_tolerance_mm, t) && t < best_t) {
+          best_t = t;
+          best = i;
+        }
+      }
+    } else {
+      const float t_max = float(std::min(best_t, 1.0));
+      const float left = entry(nodes_[node.first], origin, inverse, t_max);
+      const float right = entry(nodes_[node.first + 1], origin, inverse, t_max);
+      if (left != no_entry && right != no_entry) {
+        // Nearer child first; the farther waits on the stack and is re-culled against best_t.
+        const bool left_first = left <= right;
+        stack[top++] = left_first ? node.first + 1 : node.first;
+        current = left_first ? node.first : node.first + 1;
+        continue;
+      }
+      if (left != no_entry) {
+        current = node.first;
+        continue;
+      }
+      if (right != no_entry) {
+        current = node.first + 1;
+        continue;
+      }
+    }
+    // Pop the next subtree that the segment still reaches before the best hit.
+    bool found = false;
+    while (top > 0) {
+      current = stack[--top];
+      if (entry(nodes_[current], origin, inverse, float(std::min(best_t, 1.0))) != no_entry) {
+        found = true;
+        break;
+      }
+    }
+    if (!found) break;
+  }
+  if (best_t > 1.0) return {};
+  BvhHit hit = make_hit(best, from + d * best_t);
+  hit.t = float(best_t);
+  return hit;
+}
+
+BvhHit Bvh::closest_point(const glm::dvec3& point, double max_distance_mm) const noexcept {
+  if (nodes_.empty() || !(max_distance_mm >= 0.0)) return {};
+  const glm::vec3 p(point);
+  double best_d2 = max_distance_mm * max_distance_mm;
+  glm::dvec3 best_point(0.0);
+  std::uint32_t best = 0;
+  bool found_any = false;
+  // Box distances are in float: compare against a slightly enlarged bound so rounding never prunes.
+  const auto bound = [&best_d2]() { return float(best_d2) * 1.0001f + 1e-12f; };
+  std::uint32_t stack[max_depth];
+  std::size_t top = 0;
+  if (box_distance2(nodes_[0], p) > bound()) return {};
+  std::uint32_t current = 0;
+  for (;;) {
+    const Node& node = nodes_[current];
+    if (node.count > 0) {
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+        const Triangle& tri = triangles_[i];
+        const glm::dvec3 q = closest_point_on_triangle(point, vertex(tri, 0), vertex(tri, 1), vertex(tri, 2));
+        const glm::dvec3 offset = q - point;
+        const double d2 = glm::dot(offset, offset);
+        if (d2 <= best_d2) {
+          best_d2 = d2;
+          best_point = q;
+          best = i;
+          found_any = true;
+        }
+      }
+    } else {
+      const float left = box_distance2(nodes_[node.first], p);
+      const float right = box_distance2(nodes_[node.first + 1], p);
+      const bool left_in = left <= bound(), right_in = right <= bound();
+      if (left_in && right_in) {
+        const bool left_first = left <= right;
+        stack[top++] = left_first ? node.first + 1 : node.first;
+        current = left_first ? node.first : node.first + 1;
+        continue;
+      }
+      if (left_in || right_in) {
+        current = left_in ? node.first : node.first + 1;
+        continue;
+      }
+    }
+    bool found = false;
+    while (top > 0) {
+      current = stack[--top];
+      if (box_distance2(nodes_[current], p) <= bound()) {
+        found = true;
+        break;
+      }
+    }
+    if (!found) break;
+  }
+  if (!found_any) return {};
+  BvhHit hit = make_hit(best, best_point);
+  hit.distance_mm = float(std::sqrt(best_d2));
+  return hit;
+}
+
+}  // namespace palpate

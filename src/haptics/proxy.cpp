@@ -1,0 +1,274 @@
+// God-object proxy step: continuous collision of the proxy's path against the BVH; on one face, a walk
+// to the triangle's nearest point and a look past its edge; on two or three (concave creases and
+// corners), the point nearest the HIP on the free side of their planes.
+#include "palpate/haptics/proxy.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+
+namespace palpate {
+namespace {
+
+// A path can meet one more plane while three are active, so the solve looks at up to four and keeps
+// the (at most three) that the minimum rests on.
+constexpr int max_candidates = 4;
+// Below these the crease line (two planes) or corner point (three) is too ill-conditioned to trust;
+// the smaller subsets then carry the answer (the planes are within 0.006 degrees of each other).
+constexpr double min_pair_determinant = 1e-8;
+constexpr double min_triple_determinant = 1e-6;
+constexpr double min_multiplier = -1e-9;  // mm
+
+struct Candidate {
+  glm::dvec3 normal;  // unit, outward
+  double offset;      // normal . x >= offset: the face's plane raised by the surface epsilon
+  std::uint32_t primitive;
+  double multiplier;
+};
+
+struct Solution {
+  bool found = false;
+  unsigned mask = 0;      // which candidates the minimum rests on
+  glm::dvec3 point{0.0};  // the minimum
+  double multiplier[max_candidates] = {};
+};
+
+bool finite(glm::vec3 v) noexcept {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
+
+// Subsets of up to three of four candidates, smallest first, as bit masks (listing them beats
+// counting bits at run time).
+constexpr unsigned subsets_by_size[] = {0b0000, 0b0001, 0b0010, 0b0100, 0b1000, 0b0011, 0b0101, 0b0110,
+                                        0b1001, 0b1010, 0b1100, 0b0111, 0b1011, 0b1101, 0b1110};
+
+// The point nearest `hip` on the free side of every candidate's plane: a strictly convex problem with
+// at most four constraints, so try the subsets of planes it may rest on from the smallest up; the
+// first whose multipliers are >= 0 (the HIP pushes into each) and whose point is on the free side of
+// the others is the minimum (an exact active-set solve).
+Solution solve(const Candidate* c, int count, const glm::dvec3& hip, double tolerance) noexcept {
+  double violation[max_candidates];  // how far the HIP is behind each plane, mm
+  for (int i = 0; i < count; ++i) violation[i] = c[i].offset - glm::dot(c[i].normal, hip);
+  const unsigned all = (1u << count) - 1;
+  for (const unsigned mask : subsets_by_size) {
+    if ((mask & ~all) != 0) continue;
+    int index[3] = {};
+    int size = 0;
+    for (int i = 0; i < count; ++i) {
+      if (mask & (1u << i)) index[size++] = i;
+    }
+    Solution s;
+    s.mask = mask;
+    s.point = hip;
+    if (size == 1) {
+      const int i = index[0];
+      s.multiplier[i] = violation[i];
+      s.point += violation[i] * c[i].normal;
+    } else if (size == 2) {
+      const int i = index[0], j = index[1];
+      const double cosine = glm::dot(c[i].normal, c[j].normal);
+      const double determinant = 1.0 - cosine * cosine;
+      if (determinant < min_pair_determinant) continue;
+      s.multiplier[i] = (violation[i] - cosine * violation[j]) / determinant;
+      s.multiplier[j] = (violation[j] - cosine * violation[i]) / determinant;
+      s.point += s.multiplier[i] * c[i].normal + s.multiplier[j] * c[j].normal;
+    } else if (size == 3) {
+      const int i = index[0], j = index[1], k = index[2];
+      const glm::dvec3 jk = glm::cross(c[j].normal, c[k].normal), ki = glm::cross(c[k].normal, c[i].normal),
+                       ij = glm::cross(c[i].normal, c[j].normal);
+      const double determinant = glm::dot(c[i].normal, jk);
+      if (std::abs(determinant) < min_triple_determinant) continue;
+      const glm::dvec3 offset = (violation[i] * jk + violation[j] * ki + violation[k] * ij) / determinant;
+      s.multiplier[i] = glm::dot(offset, jk) / determinant;
+      s.multiplier[j] = glm::dot(offset, ki) / determinant;
+      s.multiplier[k] = glm::dot(offset, ij) / determinant;
+      s.point += offset;
+    }
+    bool valid = true;
+    for (int i = 0; i < count && valid; ++i) {
+      if (mask & (1u << i)) {
+        valid = s.multiplier[i] >= min_multiplier;
+      } else {
+        valid = glm::dot(c[i].normal, s.point) - c[i].offset >= -tolerance;
+      }
+    }
+    if (valid) {
+      s.found = true;
+      return s;
+    }
+  }
+  return {};
+}
+
+// Whether the proxy still lies over every triangle it rests on (within `tolerance` of their edges).
+// When it does not, it has followed their planes past the end of the triangles into free space.
+bool supported(const Bvh& bvh, const Candidate* c, int count, const glm::dvec3& p,
+               double tolerance) noexcept {
+  for (int i = 0; i < count; ++i) {
+    const Bvh::Triangle& tri = bvh.triangle(c[i].primitive);
+    for (int e = 0; e < 3; ++e) {
+      const glm::dvec3 a(tri.vertices[std::size_t(e)]), b(tri.vertices[std::size_t((e + 1) % 3)]);
+      const glm::dvec3 edge = b - a;
+      // Distance of p's projection inside the edge's line, positive toward the triangle.
+      if (glm::dot(glm::cross(edge, p - a), c[i].normal) < -tolerance * glm::length(edge)) return false;
+    }
+  }
+  return true;
+}
+
+}  // namespace
+
+void ProxyState::reset(glm::vec3 p) noexcept {
+  position = glm::dvec3(p);
+  constraint_count = 0;
+  placed = true;
+  last_iterations = 0;
+}
+
+Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const ProxyParams& params) noexcept {
+  Contact contact;
+  contact.hip = hip_mm;
+  if (!finite(hip_mm)) return contact;
+  if (!state.placed) state.reset(hip_mm);
+  const glm::dvec3 hip(hip_mm);
+  const double epsilon = params.surface_epsilon_mm;
+  const double tolerance = 1e-3 * epsilon;
+
+  // Warm start from the planes the proxy rested on (sliding on a face then costs one segment), except
+  // those whose surface the HIP is now on or in front of: they hold nothing back.
+  Candidate c[max_candidates];
+  int count = 0;
+  for (int i = 0; i < state.constraint_count; ++i) {
+    const ProxyConstraint& k = state.constraints[std::size_t(i)];
+    if (glm::dot(k.normal, hip) < k.offset - epsilon)
+      c[count++] = {k.normal, k.offset, k.primitive, k.multiplier};
+  }
+  glm::dvec3 p = state.position;
+  // The last face met, for the contact when the segment cap cuts a search short.
+  std::uint32_t last_primitive = count > 0 ? c[0].primitive : 0;
+  bool handed_over = false;       // the last look past an edge handed the proxy to the face beyond
+  glm::dvec3 handover_from(0.0);  // ... from this nearest point of the face before
+
+  // Moves p toward `to` until the path is epsilon above the plane of the triangle it ran into (not at
+  // all when it starts closer than that): everything before the hit is free, so this never crosses a
+  // surface. Returns the triangle's plane.
+  const auto stop_before = [&](const BvhHit& hit, const glm::dvec3& to) {
+    const Bvh::Triangle& tri = bvh.triangle(hit.primitive);
+    const glm::dvec3 v0(tri.vertices[0]), v1(tri.vertices[1]), v2(tri.vertices[2]);
+    const glm::dvec3 normal = glm::normalize(glm::cross(v1 - v0, v2 - v0));
+    const double plane = glm::dot(normal, v0);
+    const double above_from = glm::dot(normal, p) - plane, above_to = glm::dot(normal, to) - plane;
+    if (above_from > epsilon && above_from > above_to) {
+      p += std::min((above_from - epsilon) / (above_from - above_to), 1.0) * (to - p);
+    }
+    last_primitive = hit.primitive;
+    return Candidate{normal, plane + epsilon, hit.primitive, 0.0};
+  };
+
+  int iteration = 0;
+  while (iteration < params.max_iterations) {
+    ++iteration;
+    const int offered = count;
+    const Solution s = solve(c, count, hip, tolerance);
+    bool at_edge = false;
+    glm::dvec3 nearest(0.0);
+    if (s.found) {
+      int kept = 0;
+      for (int i = 0; i < count; ++i) {
+        if (s.mask & (1u << i)) {
+          c[kept] = c[i];
+          c[kept++].multiplier = s.multiplier[i];
+        }
+      }
+      count = kept;
+      glm::dvec3 goal = s.point;
+      if (offered == 1 && count == 1) {
+        // On one face with nothing else in play: walk to the nearest point of the triangle, not of its
+        // plane, so the proxy settles on an edge or vertex where that is the surface's nearest point.
+        // (When the plane's point is more than a triangle away, it takes the plane's long stride
+        // instead and finds its footing again there: a far jump of the tip is not walked a triangle at
+        // a time.)
+        const Bvh::Triangle& tri = bvh.triangle(c[0].primitive);
+        const glm::dvec3 v0(tri.vertices[0]), v1(tri.vertices[1]), v2(tri.vertices[2]);
+        nearest = closest_point_on_triangle(hip, v0, v1, v2);
+        const glm::dvec3 lifted = nearest + (c[0].offset - glm::dot(c[0].normal, nearest)) * c[0].normal;
+        const double beyond2 = glm::dot(lifted - goal, lifted - goal);
+        const double size2 =
+            std::max({glm::dot(v1 - v0, v1 - v0), glm::dot(v2 - v1, v2 - v1), glm::dot(v0 - v2, v0 - v2)});
+        if (beyond2 <= size2) {
+          at_edge = beyond2 > tolerance * tolerance;
+          goal = lifted;
+          // Handed back to the edge or vertex it was handed over from: the surface's nearest point.
+          if (at_edge && handed_over && glm::distance(nearest, handover_from) < tolerance) break;
+        }
+      }
+      const glm::dvec3 path = goal - p;
+      if (glm::dot(path, path) > 1e-24) {  // 1e-12 mm
+        const BvhHit hit = bvh.first_hit(p, goal, Faces::front, tolerance);
+        if (hit.hit()) {
+          c[count++] = stop_before(hit, goal);
+          handed_over = false;
+          continue;
+        }
+        p = goal;
+      }
+      if (!at_edge) {
+        if (count == 0 || supported(bvh, c, count, p, epsilon)) break;  // free at the HIP, or resting
+        // Followed its planes past the end of their triangles: find the constraints again from here.
+        count = 0;
+        handed_over = false;
+        continue;
+      }
+    }
+    // At the edge of its face (or wedged where no goal fits): look from here toward the HIP.
+    const BvhHit next = bvh.first_hit(p, hip, Faces::front, tolerance);
+    if (!next.hit()) {  // nothing in the way: the HIP is outside and reachable
+      p = hip;
+      count = 0;
+      break;
+    }
+    if (!s.found || next.primitive == c[0].primitive) break;  // its own face in the way: as close as it gets
+    // Past its edge: the face in view takes over (a concave one is met again as a wall on the walk).
+    c[0] = stop_before(next, hip);
+    count = 1;
+    handed_over = true;
+    handover_from = nearest;
+  }
+
+  state.position = p;
+  state.last_iterations = iteration;
+  // Keep at most three planes (the solve keeps no more; a capped tick may end with a fourth).
+  const int first = std::max(0, count - 3);
+  state.constraint_count = count - first;
+  for (int i = first; i < count; ++i) {
+    state.constraints[std::size_t(i - first)] = {c[i].normal, c[i].offset, c[i].multiplier, c[i].primitive};
+  }
+
+  contact.point = glm::vec3(p);
+  const glm::dvec3 spring = p - hip;
+  const double depth = glm::length(spring);
+  // In contact while a plane holds the proxy back, or while a search the cap cut short left it apart
+  // from the HIP (it resumes next tick).
+  if (state.constraint_count == 0 && depth <= epsilon) return contact;
+  std::uint32_t primary = last_primitive;
+  double strongest = -1.0;
+  for (int i = 0; i < state.constraint_count; ++i) {
+    if (state.constraints[std::size_t(i)].multiplier > strongest) {
+      strongest = state.constraints[std::size_t(i)].multiplier;
+      primary = state.constraints[std::size_t(i)].primitive;
+    }
+  }
+  bvh.locate(primary, contact.object, contact.triangle);
+  if (depth > 0.5 * epsilon) {
+    contact.normal = glm::vec3(spring / depth);
+  } else {
+    const Bvh::Triangle& tri = bvh.triangle(primary);
+    contact.normal =
+        glm::vec3(glm::normalize(glm::cross(glm::dvec3(tri.vertices[1]) - glm::dvec3(tri.vertices[0]),
+                                            glm::dvec3(tri.vertices[2]) - glm::dvec3(tri.vertices[0]))));
+  }
+  contact.depth_mm = float(depth);
+  return contact;
+}
+
+}  // namespace palpate

@@ -1,0 +1,296 @@
+#include "palpate/core/bvh.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <random>
+#include <vector>
+
+#include "palpate/core/error.hpp"
+#include "palpate/core/shapes.hpp"
+
+namespace palpate {
+namespace {
+
+Scene scene_of(Mesh mesh, glm::mat4 transform = glm::mat4(1.0f)) {
+  Scene scene;
+  scene.objects.push_back({"object", std::move(mesh), transform, {}, {}});
+  return scene;
+}
+
+struct WorldTriangle {
+  glm::dvec3 a, b, c;
+  int object, triangle;
+};
+
+std::vector<WorldTriangle> world_triangles(const Scene& scene) {
+  std::vector<WorldTriangle> out;
+  for (std::size_t o = 0; o < scene.objects.size(); ++o) {
+    const SceneObject& obj = scene.objects[o];
+    if (!obj.material.touchable) continue;
+    const auto at = [&](std::size_t corner) {
+      return glm::dvec3(
+          glm::vec3(obj.transform * glm::vec4(obj.mesh.positions[obj.mesh.indices[corner]], 1.0f)));
+    };
+    for (std::size_t t = 0; t < obj.mesh.triangle_count(); ++t)
+      out.push_back({at(3 * t), at(3 * t + 1), at(3 * t + 2), int(o), int(t)});
+  }
+  return out;
+}
+
+// Reference segment cast: Moller-Trumbore over every triangle (a different algorithm from the BVH's).
+struct ReferenceHit {
+  double t = 2.0;
+  int object = -1, triangle = -1;
+};
+
+ReferenceHit brute_first_hit(const std::vector<WorldTriangle>& tris, glm::dvec3 from, glm::dvec3 to,
+                             bool front_only) {
+  ReferenceHit best;
+  const glm::dvec3 d = to - from;
+  for (const WorldTriangle& tri : tris) {
+    const glm::dvec3 e1 = tri.b - tri.a, e2 = tri.c - tri.a;
+    const glm::dvec3 pv = glm::cross(d, e2);
+    const double det = glm::dot(e1, pv);
+    if (det == 0.0 || (front_only && det < 0.0)) continue;  // det > 0: d runs against the normal e1 x e2
+    const glm::dvec3 tv = from - tri.a;
+    const double u = glm::dot(tv, pv) / det;
+    if (u < 0.0 || u > 1.0) continue;
+    const glm::dvec3 qv = glm::cross(tv, e1);
+    const double v = glm::dot(d, qv) / det;
+    if (v < 0.0 || u + v > 1.0) continue;
+    const double t = glm::dot(e2, qv) / det;
+    if (t < 0.0 || t > 1.0) continue;
+    if (t < best.t) best = {t, tri.object, tri.triangle};
+  }
+  return best;
+}
+
+// Reference point-triangle distance: the plane distance when the projection falls inside, else the
+// nearest of the three edges (Ericson's Voronoi-region walk is what the BVH uses).
+double segment_distance(glm::dvec3 p, glm::dvec3 a, glm::dvec3 b) {
+  const glm::dvec3 ab = b - a;
+  const double s = std::clamp(glm::dot(p - a, ab) / glm::dot(ab, ab), 0.0, 1.0);
+  return glm::length(p - (a + s * ab));
+}
+
+double brute_distance(const std::vector<WorldTriangle>& tris, glm::dvec3 p) {
+  double best = 1e300;
+  for (const WorldTriangle& tri : tris) {
+    const glm::dvec3 n = glm::normalize(glm::cross(tri.b - tri.a, tri.c - tri.a));
+    const glm::dvec3 q = p - glm::dot(p - tri.a, n) * n;
+    const bool inside = glm::dot(glm::cross(tri.b - tri.a, q - tri.a), n) >= 0 &&
+                        glm::dot(glm::cross(tri.c - tri.b, q - tri.b), n) >= 0 &&
+                        glm::dot(glm::cross(tri.a - tri.c, q - tri.c), n) >= 0;
+    const double d = inside ? std::abs(glm::dot(p - tri.a, n))
+                            : std::min({segment_distance(p, tri.a, tri.b), segment_distance(p, tri.b, tri.c),
+                                        segment_distance(p, tri.c, tri.a)});
+    best = std::min(best, d);
+  }
+  return best;
+}
+
+glm::dvec3 random_point(std::mt19937& rng, double half) {
+  std::uniform_real_distribution<double> u(-half, half);
+  return {u(rng), u(rng), u(rng)};
+}
+
+TEST(Bvh, EmptySceneHasNoTrianglesAndNeverHits) {
+  const Bvh bvh = Bvh::build(Scene{});
+  EXPECT_EQ(bvh.triangle_count(), 0u);
+  EXPECT_FALSE(bvh.first_hit({0, 0, -1}, {0, 0, 1}).hit());
+  EXPECT_FALSE(bvh.closest_point({0, 0, 0}, 1e9).hit());
+}
+
+TEST(Bvh, EveryTriangleSitsInExactlyOneLeafInsideEveryBoxAbove) {
+  const Scene scene = scene_of(make_bumpy_sphere(50.0f, 1.5f, 20000));
+  const Bvh bvh = Bvh::build(scene);
+  ASSERT_EQ(bvh.triangle_count(), scene.triangle_count());
+  const auto& nodes = bvh.nodes();
+  std::vector<int> seen(bvh.triangle_count(), 0);
+  std::vector<int> ids(bvh.triangle_count(), 0);
+  // Walk with the parent's box, checking containment.
+  struct Item {
+    std::uint32_t node;
+    glm::vec3 min, max;
+    std::size_t depth;
+  };
+  std::vector<Item> todo{{0, nodes[0].min, nodes[0].max, 1}};
+  std::size_t deepest = 0;
+  while (!todo.empty()) {
+    const Item item = todo.back();
+    todo.pop_back();
+    const Bvh::Node& n = nodes[item.node];
+    deepest = std::max(deepest, item.depth);
+    EXPECT_TRUE(glm::all(glm::greaterThanEqual(n.min, item.min)) &&
+                glm::all(glm::lessThanEqual(n.max, item.max)));
+    if (n.count > 0) {
+      EXPECT_LE(n.count, 4u);
+      for (std::uint32_t i = n.first; i < n.first + n.count; ++i) {
+        ++seen[i];
+        ++ids[bvh.triangle(i).id];
+        for (const glm::vec3& v : bvh.triangle(i).vertices) {
+          EXPECT_TRUE(glm::all(glm::greaterThanEqual(v, n.min)) && glm::all(glm::lessThanEqual(v, n.max)));
+        }
+      }
+    } else {
+      ASSERT_LT(n.first + 1, nodes.size());
+      todo.push_back({n.first, n.min, n.max, item.depth + 1});
+      todo.push_back({n.first + 1, n.min, n.max, item.depth + 1});
+    }
+  }
+  EXPECT_TRUE(std::all_of(seen.begin(), seen.end(), [](int k) { return k == 1; }));
+  EXPECT_TRUE(std::all_of(ids.begin(), ids.end(), [](int k) { return k == 1; }));
+  EXPECT_LE(deepest, Bvh::max_depth);
+  // Compact: nodes and triangles together stay well under 100 bytes per triangle.
+  EXPECT_LT(double(bvh.memory_bytes()) / double(bvh.triangle_count()), 100.0);
+  EXPECT_EQ(sizeof(Bvh::Node), 32u);
+  EXPECT_EQ(sizeof(Bvh::Triangle), 40u);
+}
+
+TEST(Bvh, SegmentCastMatchesBruteForce) {
+  const Scene scene = scene_of(make_bumpy_sphere(50.0f, 1.5f, 4000));
+  const Bvh bvh = Bvh::build(scene);
+  const auto tris = world_triangles(scene);
+  std::mt19937 rng(7);
+  int hits = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const glm::dvec3 from = random_point(rng, 70.0), to = random_point(rng, 70.0);
+    for (bool front_only : {true, false}) {
+      const ReferenceHit expected = brute_first_hit(tris, from, to, front_only);
+      const BvhHit got = bvh.first_hit(from, to, front_only ? Faces::front : Faces::both);
+      ASSERT_EQ(got.hit(), expected.object >= 0) << "segment " << i;
+      if (!got.hit()) continue;
+      ++hits;
+      EXPECT_NEAR(got.t, expected.t, 1e-6) << "segment " << i;
+      // Ties on a shared edge may pick either triangle; elsewhere the triangle is the same.
+      if (got.triangle != expected.triangle) {
+        EXPECT_NEAR(got.t, expected.t, 1e-9);
+      }
+      const glm::dvec3 point = from + double(got.t) * (to - from);
+      EXPECT_NEAR(glm::length(glm::dvec3(got.point) - point), 0.0, 1e-4);
+      if (front_only) {
+        EXPECT_LT(glm::dot(glm::dvec3(got.normal), to - from), 0.0);
+      }
+    }
+  }
+  EXPECT_GT(hits, 2000);  // the sample really exercises hits
+}
+
+TEST(Bvh, ClosestPointMatchesBruteForce) {
+  const Scene scene = scene_of(make_bumpy_sphere(50.0f, 1.5f, 4000));
+  const Bvh bvh = Bvh::build(scene);
+  const auto tris = world_triangles(scene);
+  std::mt19937 rng(11);
+  for (int i = 0; i < 2000; ++i) {
+    const glm::dvec3 p = random_point(rng, 70.0);
+    const double expected = brute_distance(tris, p);
+    const BvhHit got = bvh.closest_point(p, 1e9);
+    ASSERT_TRUE(got.hit());
+    EXPECT_NEAR(got.distance_mm, expected, 1e-4) << "point " << i;
+    EXPECT_NEAR(glm::length(glm::dvec3(got.point) - p), expected, 1e-4);
+    // A search radius below the distance finds nothing; one just above finds it.
+    EXPECT_FALSE(bvh.closest_point(p, expected * 0.99).hit());
+    EXPECT_TRUE(bvh.closest_point(p, expected * 1.01 + 1e-6).hit());
+  }
+}
+
+// Segments aimed exactly through vertices and edge midpoints of a closed mesh must hit it: the edge
+// test is watertight.
+TEST(Bvh, SegmentsThroughVerticesAndEdgesNeverSlipThrough) {
+  const Mesh mesh = make_sphere(30.0f, 642);
+  const Bvh bvh = Bvh::build(scene_of(mesh));
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> jitter(-1.0f, 1.0f);
+  int tested = 0;
+  for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+    const glm::vec3 a = mesh.positions[mesh.indices[3 * t]], b = mesh.positions[mesh.indices[3 * t + 1]];
+    for (const glm::vec3 target : {a, 0.5f * (a + b)}) {
+      // From outside toward (through) the target, at several angles.
+      for (int k = 0; k < 4; ++k) {
+        const glm::vec3 out =
+            glm::normalize(target + 10.0f * glm::vec3(jitter(rng), jitter(rng), jitter(rng)));
+        const glm::dvec3 from = glm::dvec3(target) + 20.0 * glm::dvec3(out);
+        const glm::dvec3 to = glm::dvec3(target) + (glm::dvec3(target) - from) * 0.5;  // ends inside
+        EXPECT_TRUE(bvh.first_hit(from, to).hit()) << "triangle " << t << " angle " << k;
+        ++tested;
+      }
+    }
+  }
+  EXPECT_GT(tested, 5000);
+}
+
+TEST(Bvh, AppliesTransformsSkipsUntouchableObjectsAndNamesTheObject) {
+  Scene scene;
+  scene.objects.push_back({"ghost", make_box({10, 10, 10}), glm::mat4(1.0f), {}, {}});
+  scene.objects.back().material.touchable = false;
+  scene.objects.push_back(
+      {"left", make_box({10, 10, 10}), glm::translate(glm::mat4(1.0f), {-20, 0, 0}), {}, {}});
+  scene.objects.push_back(
+      {"right", make_box({10, 10, 10}), glm::translate(glm::mat4(1.0f), {20, 0, 0}), {}, {}});
+  const Bvh bvh = Bvh::build(scene);
+  EXPECT_EQ(bvh.triangle_count(), 24u);
+  // Down onto the right box's top face (z = 5) at x = 21.
+  const BvhHit right = bvh.first_hit({21, 1, 20}, {21, 1, -20});
+  ASSERT_TRUE(right.hit());
+  EXPECT_EQ(right.object, 2);
+  EXPECT_NEAR(right.point.z, 5.0f, 1e-5f);
+  EXPECT_NEAR(right.t, 15.0f / 40.0f, 1e-6f);
+  EXPECT_EQ(right.normal, glm::vec3(0, 0, 1));
+  const Mesh& box = scene.objects[2].mesh;
+  const std::uint32_t* corners = &box.indices[3 * std::size_t(right.triangle)];
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(box.positions[corners[k]].z, 5.0f);  // a top-face triangle
+  // The untouchable box at the origin is not there.
+  EXPECT_FALSE(bvh.first_hit({0, 0, 20}, {0, 0, -20}).hit());
+  const BvhHit left = bvh.first_hit({-21, 1, 20}, {-21, 1, -20});
+  ASSERT_TRUE(left.hit());
+  EXPECT_EQ(left.object, 1);
+  // From inside the left box, only its back faces are in the way: front-only passes, both-sided hits.
+  EXPECT_FALSE(bvh.first_hit({-20, 0, 0}, {-20, 0, 20}, Faces::front).hit());
+  EXPECT_TRUE(bvh.first_hit({-20, 0, 0}, {-20, 0, 20}, Faces::both).hit());
+}
+
+TEST(Bvh, StartToleranceCatchesASegmentStartingJustBehindAFace) {
+  const Bvh bvh = Bvh::build(scene_of(make_box({10, 10, 10})));
+  // From 1e-7 mm below the top face (inside) further in.
+  EXPECT_FALSE(bvh.first_hit({1, 1, 5 - 1e-7}, {1, 1, 0}, Faces::front, 0.0).hit());
+  const BvhHit hit = bvh.first_hit({1, 1, 5 - 1e-7}, {1, 1, 0}, Faces::front, 1e-6);
+  ASSERT_TRUE(hit.hit());
+  EXPECT_EQ(hit.t, 0.0f);
+}
+
+TEST(Bvh, CoincidentTrianglesBuildABoundedTree) {
+  // Thousands of copies of one triangle: binning cannot separate them.
+  Mesh mesh;
+  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh.normals.assign(3, {0, 0, 1});
+  for (int i = 0; i < 5000; ++i) mesh.indices.insert(mesh.indices.end(), {0, 1, 2});
+  const Bvh bvh = Bvh::build(scene_of(mesh));
+  EXPECT_EQ(bvh.triangle_count(), 5000u);
+  const BvhHit hit = bvh.first_hit({0.2, 0.2, 1}, {0.2, 0.2, -1});
+  ASSERT_TRUE(hit.hit());
+  EXPECT_NEAR(hit.t, 0.5f, 1e-7f);
+}
+
+TEST(Bvh, RejectsBadMeshesNamingTheObject) {
+  Mesh mesh = make_box({1, 1, 1});
+  mesh.indices.back() = 99;
+  Scene scene = scene_of(mesh);
+  scene.objects[0].name = "bad box";
+  try {
+    (void)Bvh::build(scene);
+    FAIL() << "expected palpate::Error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("bad box"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("vertex 99"), std::string::npos) << e.what();
+  }
+  Mesh nan_mesh = make_box({1, 1, 1});
+  nan_mesh.positions[3].y = std::nanf("");
+  EXPECT_THROW((void)Bvh::build(scene_of(nan_mesh)), Error);
+}
+
+}  // namespace
+}  // namespace palpate
