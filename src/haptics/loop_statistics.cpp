@@ -107,6 +107,7 @@ LoopStatistics LoopStatsRecorder::snapshot() const {
     ++stats.period_histogram[std::size_t(std::clamp(bin, 0.0, double(LoopStatistics::histogram_bins - 1)))];
     errors_us.push_back(std::abs(double(std::int64_t(period) - target_period_ns_)) * 1e-3);
   }
+  stats.periods_us.assign(periods_us.begin(), periods_us.end());
   stats.tick_us = percentiles(ticks_us);
   stats.period_us = percentiles(periods_us);
   stats.period_error_us = percentiles(errors_us);

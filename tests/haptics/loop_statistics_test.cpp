@@ -138,6 +138,7 @@ TEST(LoopStatisticsTest, ScheduleAndFiguresOnAFakeClock) {
   histogram[0] = 1;
   histogram[LoopStatistics::histogram_bins - 1] = 1;
   EXPECT_EQ(stats.period_histogram, histogram);
+  EXPECT_EQ(stats.periods_us, (std::vector<float>{1000, 1000, 2500, 500, 1000}));
   // Less than a second run: 5 periods in 6 ms.
   EXPECT_NEAR(stats.achieved_hz, 5.0 / 0.006, 1e-9);
   const Contact last = loop.latest_contact();

@@ -9,6 +9,7 @@
 #include <cstdint>
 #include <memory>
 #include <span>
+#include <vector>
 
 namespace palpate {
 
@@ -36,6 +37,8 @@ struct LoopStatistics {
   // count the periods below and above that range. For a live histogram.
   static constexpr std::size_t histogram_bins = 40;
   std::array<std::uint32_t, histogram_bins> period_histogram{};
+  // The window's periods in tick order, oldest first, us: for plots over time.
+  std::vector<float> periods_us;
 };
 
 // Single writer (the loop thread), any number of readers.
