@@ -44,7 +44,7 @@ double hull_radius(glm::dvec3 u) {
   // a little in front of the middle), highest under the frontal lobes.
   const double side = std::abs(u.x) - 0.62, front = u.y - 0.12;
   const double temporal = std::exp(-(side * side + front * front) / 0.05);
-  const double floor_depth = 47.0 + 11.0 * temporal - 13.0 * smoothstep(0.25, 0.75, u.y);
+  const double floor_depth = 53.0 + 11.0 * temporal - 13.0 * smoothstep(0.25, 0.75, u.y);
   const double inv_floor = std::max(0.0, -u.z) / floor_depth;
   // The nearer of the two surfaces, with a rounded edge: an 8-norm of the inverse distances.
   const double a2 = inv_ellipsoid * inv_ellipsoid, b2 = inv_floor * inv_floor;
@@ -78,10 +78,10 @@ struct FissureDesign {
 struct SulcusDesign {
   int wave_degree = 15;            // crest to crest about pi R / sqrt(l (l + 1)): 12 to 17 mm
   std::uint64_t seed = 0x70616c70617465ull;
-  double depth_mm = 11.0;          // 8 to 11 mm, deeper where the wave is strong
-  double bottom_radius_mm = 1.5;
-  double lip_radius_mm = 1.5;
-  double wall_angle_rad = 82.0 * degrees;
+  double depth_mm = 13.0;          // 10 to 13 mm, deeper where the wave is strong
+  double bottom_radius_mm = 1.0;   // in phase units; a little wider on the surface, see read()
+  double lip_radius_mm = 1.2;
+  double wall_angle_rad = 85.0 * degrees;
   double midline_free_mm = 11.0;   // no sulci this close to the midline where the fissure is...
   double fade_in_mm = 6.0;         // ...then they deepen over this distance
   // Where the wave and its slope are both small its phase turns fast around a point, which would make
@@ -199,7 +199,8 @@ class BrainShape {
 // True when triangle (a, b, c) turns counter-clockwise seen from the origin, by a margin relative to its
 // size: every triangle doing so makes the mesh star-shaped about the origin.
 bool faces_away(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
-  return glm::dot(a, glm::cross(b, c)) > 1e-9 * glm::length(a) * glm::length(b) * glm::length(c);
+  const double volume = glm::dot(a, glm::cross(b, c));
+  return volume > 0.0 && volume * volume > 1e-18 * glm::dot(a, a) * glm::dot(b, b) * glm::dot(c, c);
 }
 
 // Puts vertex v on the surface in direction from[v] + share * (to[v] - from[v]), then backs the share off
@@ -251,9 +252,8 @@ void place_on_surface(Mesh& mesh, const BrainShape& shape, const std::vector<glm
 }  // namespace
 
 Mesh make_brain_phantom(std::size_t vertices) {
-  constexpr std::size_t min_vertices = 500;
-  if (vertices < min_vertices) {
-    throw Error("make_brain_phantom: need at least " + std::to_string(min_vertices) + " vertices, got " +
+  if (vertices < phantom_min_vertices) {
+    throw Error("make_brain_phantom: need at least " + std::to_string(phantom_min_vertices) + " vertices, got " +
                 std::to_string(vertices));
   }
   Mesh mesh = make_sphere(1.0f, vertices);
@@ -270,7 +270,7 @@ Mesh make_brain_phantom(std::size_t vertices) {
   // Most of the way across the sulci: the full move turns more triangles over where the wave is not
   // locally a plane wave, and smoothing does the rest.
   place_on_surface(mesh, shape, ringed, folded, 0.7);
-  detail::relax_radial_mesh(mesh, glm::dvec3(0.0), [&shape](glm::dvec3 w) { return shape.radius(w); }, 4,
+  detail::relax_radial_mesh(mesh, glm::dvec3(brain_phantom_star_centre), [&shape](glm::dvec3 w) { return shape.radius(w); }, 4,
                             25.0 * degrees);
   compute_vertex_normals(mesh);
   return mesh;

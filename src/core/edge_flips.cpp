@@ -17,6 +17,8 @@ namespace {
 std::uint32_t next(std::uint32_t c) { return c % 3 == 2 ? c - 2 : c + 1; }
 std::uint32_t prev(std::uint32_t c) { return c % 3 == 0 ? c + 2 : c - 1; }
 
+}  // namespace
+
 std::vector<std::uint32_t> opposite_corners(const Mesh& mesh) {
   const auto corners = static_cast<std::uint32_t>(mesh.indices.size());
   const std::vector<std::uint32_t>& v = mesh.indices;
@@ -39,12 +41,14 @@ std::vector<std::uint32_t> opposite_corners(const Mesh& mesh) {
       }
     }
     if (!found) {
-      throw Error("flip_toward_delaunay: edge " + std::to_string(from) + "-" + std::to_string(to) +
+      throw Error("opposite_corners: edge " + std::to_string(from) + "-" + std::to_string(to) +
                   " has no opposite triangle; the mesh must be closed and consistently oriented");
     }
   }
   return opposite;
 }
+
+namespace {
 
 // Cotangent of the angle at `apex` between the directions to a and b.
 double cotangent(glm::dvec3 apex, glm::dvec3 a, glm::dvec3 b) {
@@ -58,13 +62,13 @@ glm::dvec3 unit_normal(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) { return glm::n
 // that float rounding of the stored positions cannot change the verdict.
 bool faces_away(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
   const double volume = glm::dot(a, glm::cross(b, c));
-  return volume > 1e-9 * glm::length(a) * glm::length(b) * glm::length(c);
+  return volume > 0.0 && volume * volume > 1e-18 * glm::dot(a, a) * glm::dot(b, b) * glm::dot(c, c);
 }
 
 }  // namespace
 
-std::size_t flip_toward_delaunay(Mesh& mesh, glm::dvec3 centre, double max_fold_rad) {
-  std::vector<std::uint32_t> opposite = opposite_corners(mesh);
+std::size_t flip_toward_delaunay(Mesh& mesh, std::vector<std::uint32_t>& opposite, glm::dvec3 centre,
+                                 double max_fold_rad) {
   std::vector<std::uint32_t>& v = mesh.indices;
   const double min_cos = std::cos(max_fold_rad);
   const auto at = [&](std::uint32_t vertex) { return glm::dvec3(mesh.positions[vertex]) - centre; };
@@ -85,6 +89,8 @@ std::size_t flip_toward_delaunay(Mesh& mesh, glm::dvec3 centre, double max_fold_
     const std::uint32_t n1 = next(c), p1 = prev(c), n2 = next(o), p2 = prev(o);
     // Triangle (vc, va, vb) and its neighbour (vo, vb, va) across the edge va-vb.
     const glm::dvec3 pc = at(v[c]), pa = at(v[n1]), pb = at(v[p1]), po = at(v[o]);
+    // Two acute opposite angles sum to less than pi: the common case, decided without a square root.
+    if (glm::dot(pa - pc, pb - pc) >= 0.0 && glm::dot(pb - po, pa - po) >= 0.0) continue;
     if (cotangent(pc, pa, pb) + cotangent(po, pb, pa) >= -1e-9) continue;  // already Delaunay
     if (glm::dot(unit_normal(pc, pa, pb), unit_normal(po, pb, pa)) < min_cos) continue;
     if (!faces_away(pc, pa, po) || !faces_away(po, pb, pc)) continue;

@@ -30,18 +30,20 @@ Neighbours neighbours(const Mesh& mesh) {
 }
 
 bool faces_away(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
-  return glm::dot(a, glm::cross(b, c)) > 1e-9 * glm::length(a) * glm::length(b) * glm::length(c);
+  const double volume = glm::dot(a, glm::cross(b, c));
+  return volume > 0.0 && volume * volume > 1e-18 * glm::dot(a, a) * glm::dot(b, b) * glm::dot(c, c);
 }
 
 }  // namespace
 
 void relax_radial_mesh(Mesh& mesh, glm::dvec3 centre, const RadialFunction& radius, int iterations,
                        double max_fold_rad) {
+  std::vector<std::uint32_t> opposite = opposite_corners(mesh);
   std::vector<glm::vec3> previous;
   std::vector<char> moved(mesh.vertex_count());
   std::vector<std::uint32_t> undo;
   for (int round = 0; round < iterations; ++round) {
-    flip_toward_delaunay(mesh, centre, max_fold_rad);
+    flip_toward_delaunay(mesh, opposite, centre, max_fold_rad);
     compute_vertex_normals(mesh);
     const Neighbours n = neighbours(mesh);
     previous = mesh.positions;
@@ -76,7 +78,7 @@ void relax_radial_mesh(Mesh& mesh, glm::dvec3 centre, const RadialFunction& radi
       }
     } while (!undo.empty());
   }
-  flip_toward_delaunay(mesh, centre, max_fold_rad);
+  flip_toward_delaunay(mesh, opposite, centre, max_fold_rad);
 }
 
 }  // namespace palpate::detail

@@ -1,14 +1,15 @@
-// The skin phantom: a radial surface about a point inside the head (so it is star-shaped and cannot cross
-// itself), built from a few convex solids that contain that point (cranium, face, neck), blended by a
-// smooth maximum of their radial distances, plus smooth bumps for the features of a face.
+// The skin phantom: a height field over directions from a point inside the head, r(w) (so the surface is
+// star-shaped and cannot cross itself): the smooth maximum of the distances to a few solids that contain
+// that point (cranium, face, jaw, neck), plus smooth relief for the features of a face. A base sphere's
+// vertices are put on it, then smoothed and flipped into even triangles.
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <numbers>
 #include <string>
 
-#include "core/edge_flips.hpp"
 #include "core/phantom_math.hpp"
+#include "core/radial_relaxation.hpp"
 #include "palpate/core/error.hpp"
 #include "palpate/core/phantom.hpp"
 #include "palpate/core/shapes.hpp"
@@ -21,10 +22,11 @@ using detail::smooth_min;
 using detail::smoothstep;
 
 constexpr double pi = std::numbers::pi;
-constexpr double far_mm = 1e6;  // "does not end in this direction"
+constexpr double far_mm = 1e6;  // "no surface this way"
 
-// The centre of the radial surface: behind the nose, above the chin, inside every solid below.
-constexpr glm::dvec3 skin_centre{0.0, 0.0, -40.0};
+// The centre of the height field, inside every solid below: low and back enough that no ray from it runs
+// along the neck or the underside of the chin, high enough that it sees the underside of the nose.
+constexpr glm::dvec3 skin_centre(skin_phantom_star_centre);
 
 // Distance along unit direction w from skin_centre (inside) to the ellipsoid's surface.
 double ellipsoid_exit(glm::dvec3 centre, glm::dvec3 half_axes, glm::dvec3 w) {
@@ -33,20 +35,37 @@ double ellipsoid_exit(glm::dvec3 centre, glm::dvec3 half_axes, glm::dvec3 w) {
   return (-b + std::sqrt(b * b - 4.0 * a * c)) / (2.0 * a);
 }
 
-// The cranium: taller below its centre so it covers the temporal lobes.
-double cranium_exit(glm::dvec3 w) {
-  const glm::dvec3 centre(0.0, -3.0, -8.0);
-  const double below = w.z < 0.0 ? 92.0 : 80.0;
-  return ellipsoid_exit(centre, {79.0, 95.0, below}, w);
+// The same for the "4-norm ellipsoid" x^4 + y^4 + z^4 = 1 (in half-axis units): a block with round
+// edges, for the flat front of the face. Newton's method on the convex f(t) = |p(t)|_4^4 - 1 from the
+// circumscribed box's exit, where f >= 0, steps down to the root without overshooting it; the inscribed
+// ellipsoid's exit bounds it from below.
+double block_exit(glm::dvec3 centre, glm::dvec3 half_axes, glm::dvec3 w) {
+  const glm::dvec3 d = (skin_centre - centre) / half_axes, e = w / half_axes;
+  double t = far_mm;
+  for (int i = 0; i < 3; ++i) {
+    if (e[i] != 0.0) t = std::min(t, (std::copysign(1.0, e[i]) - d[i]) / e[i]);
+  }
+  const double lowest = ellipsoid_exit(centre, half_axes, w);
+  for (int i = 0; i < 8; ++i) {
+    const glm::dvec3 p = d + t * e, p2 = p * p;
+    t -= (glm::dot(p2, p2) - 1.0) / (4.0 * glm::dot(p2 * p, e));
+  }
+  return std::max(t, lowest);
 }
 
-double face_exit(glm::dvec3 w) { return ellipsoid_exit({0.0, 30.0, -70.0}, {64.0, 66.0, 92.0}, w); }
+// The cranium: an egg, taller below its equator so it covers the temporal lobes.
+double cranium_exit(glm::dvec3 w) {
+  const glm::dvec3 centre(0.0, -3.0, -6.0);
+  const double upper = ellipsoid_exit(centre, {82.0, 98.0, 78.0}, w);
+  if (skin_centre.z + upper * w.z >= centre.z) return upper;
+  return ellipsoid_exit(centre, {82.0, 98.0, 90.0}, w);
+}
 
-// The neck stub: a cone widening downward (toward the shoulders), cut by a rounded flat end.
+// The neck stub: a cone widening downward toward the shoulders, with a rounded flat end.
 double neck_exit(glm::dvec3 w) {
-  const glm::dvec3 apex(0.0, -18.0, 100.0);
-  const double slope = 0.23;  // radius growth per mm down
-  const double bottom = -205.0, top = -30.0;
+  const glm::dvec3 apex(0.0, -22.0, 120.0);
+  const double slope = 0.2;  // radius growth per mm down
+  const double bottom = -210.0, top = -30.0;
   const glm::dvec3 d = skin_centre - apex;
   const double a = w.x * w.x + w.y * w.y - slope * slope * w.z * w.z;
   const double b = 2.0 * (d.x * w.x + d.y * w.y - slope * slope * d.z * w.z);
@@ -66,35 +85,38 @@ double gaussian(glm::dvec3 p, glm::dvec3 centre, glm::dvec3 width) {
   return std::exp(-glm::dot(d, d));
 }
 
-// Features of the face, in mm outward, as functions of where the plain head's surface is.
+// Features of the face (mm outward) as functions of where the plain head's surface is.
 double face_relief(glm::dvec3 p) {
-  const double front = smoothstep(55.0, 85.0, p.y);
-  // The nose: a ridge from the root between the eyes to the tip, widening toward the nostrils.
-  const double nose_height = 19.0 * smoothstep(-22.0, -62.0, p.z) * (1.0 - smoothstep(-64.0, -76.0, p.z));
-  const double nose_width = 6.0 + 6.0 * smoothstep(-30.0, -68.0, p.z);
+  const double cheeks = 4.0 * (gaussian(p, {50.0, 70.0, -60.0}, {16.0, 25.0, 16.0}) +
+                               gaussian(p, {-50.0, 70.0, -60.0}, {16.0, 25.0, 16.0}));
+  const double front = smoothstep(50.0, 80.0, p.y);
+  if (front <= 0.0) return cheeks;
+  // The nose: a ridge from the root between the eyes down to the tip, widening toward the nostrils.
+  const double nose_height = 20.0 * smoothstep(-24.0, -64.0, p.z) * (1.0 - smoothstep(-66.0, -78.0, p.z));
+  const double nose_width = 6.0 + 7.0 * smoothstep(-30.0, -70.0, p.z);
   const double nose = nose_height * std::exp(-(p.x / nose_width) * (p.x / nose_width));
-  const double brow = 4.0 * gaussian(p, {0.0, 90.0, -18.0}, {42.0, 30.0, 9.0});
-  const double eyes = -6.0 * (gaussian(p, {33.0, 88.0, -38.0}, {13.0, 30.0, 10.0}) +
-                              gaussian(p, {-33.0, 88.0, -38.0}, {13.0, 30.0, 10.0}));
-  const double cheeks = 4.0 * (gaussian(p, {52.0, 62.0, -58.0}, {18.0, 25.0, 16.0}) +
-                               gaussian(p, {-52.0, 62.0, -58.0}, {18.0, 25.0, 16.0}));
-  const double lips = 4.0 * gaussian(p, {0.0, 95.0, -97.0}, {22.0, 30.0, 9.0});
-  const double chin = 9.0 * gaussian(p, {0.0, 85.0, -142.0}, {22.0, 30.0, 16.0});
+  const double brow = 5.0 * gaussian(p, {0.0, 92.0, -24.0}, {45.0, 30.0, 10.0});
+  const double eyes = -7.0 * (gaussian(p, {33.0, 92.0, -40.0}, {13.0, 30.0, 10.0}) +
+                              gaussian(p, {-33.0, 92.0, -40.0}, {13.0, 30.0, 10.0}));
+  const double lips = 5.0 * gaussian(p, {0.0, 96.0, -98.0}, {22.0, 30.0, 9.0});
+  const double chin = 10.0 * gaussian(p, {0.0, 85.0, -145.0}, {20.0, 30.0, 14.0});
   return front * (nose + brow + eyes + lips + chin) + cheeks;
 }
 
+// Distance (mm) from skin_centre to the skin in unit direction w.
 double skin_radius(glm::dvec3 w) {
-  const double head = smooth_max(cranium_exit(w), face_exit(w), 14.0);
-  const double plain = smooth_max(head, neck_exit(w), 16.0);
+  const double face = block_exit({0.0, 40.0, -78.0}, {64.0, 58.0, 52.0}, w);
+  const double jaw = ellipsoid_exit({0.0, 22.0, -100.0}, {52.0, 70.0, 66.0}, w);
+  const double head = smooth_max(cranium_exit(w), smooth_max(face, jaw, 12.0), 20.0);
+  const double plain = smooth_max(head, neck_exit(w), 18.0);
   return plain + face_relief(skin_centre + plain * w);
 }
 
 }  // namespace
 
 Mesh make_skin_phantom(std::size_t vertices) {
-  constexpr std::size_t min_vertices = 500;
-  if (vertices < min_vertices) {
-    throw Error("make_skin_phantom: need at least " + std::to_string(min_vertices) + " vertices, got " +
+  if (vertices < phantom_min_vertices) {
+    throw Error("make_skin_phantom: need at least " + std::to_string(phantom_min_vertices) + " vertices, got " +
                 std::to_string(vertices));
   }
   Mesh mesh = make_sphere(1.0f, vertices);
@@ -102,7 +124,7 @@ Mesh make_skin_phantom(std::size_t vertices) {
     const glm::dvec3 w = glm::normalize(glm::dvec3(p));
     p = glm::vec3(skin_centre + skin_radius(w) * w);
   }
-  detail::flip_toward_delaunay(mesh, skin_centre, 25.0 * pi / 180.0);
+  detail::relax_radial_mesh(mesh, skin_centre, skin_radius, 2, 25.0 * pi / 180.0);
   compute_vertex_normals(mesh);
   return mesh;
 }

@@ -1,5 +1,6 @@
 #include "core/spherical_wave.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <numbers>
@@ -24,7 +25,9 @@ double uniform_symmetric(std::uint64_t& state) {
 }  // namespace
 
 SphericalWave::SphericalWave(int degree, std::uint64_t seed) : degree_(degree) {
-  if (degree < 1) throw Error("SphericalWave: degree must be at least 1, got " + std::to_string(degree));
+  if (degree < 1 || degree > 64) {
+    throw Error("SphericalWave: degree must be in [1, 64], got " + std::to_string(degree));
+  }
   const double l = degree;
   wavenumber_ = std::sqrt(l * (l + 1.0));
   // Orthonormal real harmonics with independent coefficients of variance 1/3: by the addition theorem
@@ -44,7 +47,9 @@ SphericalWave::SphericalWave(int degree, std::uint64_t seed) : degree_(degree) {
                         double_factorial;
     cos_coefficient_[std::size_t(m)] = norm * uniform_symmetric(state);
     sin_coefficient_[std::size_t(m)] = m == 0 ? 0.0 : norm * uniform_symmetric(state);
-    for (int k = m; k < degree; ++k) {
+  }
+  for (int k = 0; k < degree; ++k) {
+    for (int m = 0; m <= k; ++m) {
       z_factor_.push_back(double(2 * k + 1) / double(k - m + 1));
       previous_factor_.push_back(double(k + m) / double(k - m + 1));
     }
@@ -55,33 +60,40 @@ SphericalWave::Sample SphericalWave::operator()(glm::dvec3 u) const noexcept {
   // On the unit sphere P_l^m(z) {cos, sin}(m phi) = Q_l^m(z) {Re, Im}(x + i y)^m, where Q follows the
   // Legendre recurrence (k - m + 1) Q_{k+1} = (2k + 1) z Q_k - (k + m) Q_{k-1}, with Q_m = 1 here. That
   // is a polynomial in x, y, z; its gradient, less the radial part, is the gradient on the sphere.
+  // All orders m step through k together: the steps are independent, not one long chain.
+  constexpr int max_degree = 64;
+  double q[max_degree + 1], q_z[max_degree + 1], qp[max_degree + 1], qp_z[max_degree + 1];
+  const int l = std::min(degree_, max_degree);
+  std::size_t factor = 0;
+  for (int k = 0; k < l; ++k) {
+    q[k] = 1.0, q_z[k] = 0.0, qp[k] = 0.0, qp_z[k] = 0.0;  // order k starts at Q_k^k
+    for (int m = 0; m <= k; ++m, ++factor) {
+      const double a = z_factor_[factor], b = previous_factor_[factor];
+      const double next = a * u.z * q[m] - b * qp[m];
+      const double next_z = a * (q[m] + u.z * q_z[m]) - b * qp_z[m];
+      qp[m] = q[m], qp_z[m] = q_z[m];
+      q[m] = next, q_z[m] = next_z;
+    }
+  }
+  q[l] = 1.0, q_z[l] = 0.0;
+
   double value = 0.0;
   glm::dvec3 grad(0.0);
   double re = 1.0, im = 0.0;            // (x + i y)^m
   double re_prev = 0.0, im_prev = 0.0;  // (x + i y)^(m - 1)
-  std::size_t factor = 0;
-  for (int m = 0; m <= degree_; ++m) {
+  for (int m = 0; m <= l; ++m) {
     if (m > 0) {
       re_prev = re, im_prev = im;
       re = re_prev * u.x - im_prev * u.y;
       im = re_prev * u.y + im_prev * u.x;
     }
-    double q = 1.0, q_z = 0.0;     // Q_k and dQ_k/dz
-    double qp = 0.0, qp_z = 0.0;   // Q_{k-1}
-    for (int k = m; k < degree_; ++k, ++factor) {
-      const double a = z_factor_[factor], b = previous_factor_[factor];
-      const double next = a * u.z * q - b * qp;
-      const double next_z = a * (q + u.z * q_z) - b * qp_z;
-      qp = q, qp_z = q_z;
-      q = next, q_z = next_z;
-    }
     const double cm = cos_coefficient_[std::size_t(m)], sm = sin_coefficient_[std::size_t(m)];
     const double angular = cm * re + sm * im;
     // d/dx (x + i y)^m = m (x + i y)^(m-1); d/dy = i m (x + i y)^(m-1).
-    value += q * angular;
-    grad.x += q * double(m) * (cm * re_prev + sm * im_prev);
-    grad.y += q * double(m) * (sm * re_prev - cm * im_prev);
-    grad.z += q_z * angular;
+    value += q[m] * angular;
+    grad.x += q[m] * double(m) * (cm * re_prev + sm * im_prev);
+    grad.y += q[m] * double(m) * (sm * re_prev - cm * im_prev);
+    grad.z += q_z[m] * angular;
   }
   return {value, grad - glm::dot(grad, u) * u};
 }

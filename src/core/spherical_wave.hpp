@@ -10,7 +10,7 @@ namespace palpate::detail {
 
 class SphericalWave {
  public:
-  // `degree` >= 1. The coefficients come from `seed` through splitmix64: the same on every machine.
+  // `degree` in [1, 64]. The coefficients come from `seed` through splitmix64: the same on every machine.
   SphericalWave(int degree, std::uint64_t seed);
 
   struct Sample {
@@ -32,7 +32,7 @@ class SphericalWave {
   double rms_;
   std::vector<double> cos_coefficient_;  // per order m, normalisation folded in
   std::vector<double> sin_coefficient_;
-  // The Legendre recurrence's factors for each (m, k), m <= k < degree, row by row.
+  // The Legendre recurrence's factors for each step k < degree and order m <= k, row by row in k.
   std::vector<double> z_factor_, previous_factor_;
 };
 
