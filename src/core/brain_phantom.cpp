@@ -55,9 +55,11 @@ double hull_radius(glm::dvec3 u) {
 // How much of the fissure there is along the midline: from below the frontal pole, over the top, to below
 // the occipital pole; none across the base.
 double fissure_presence(glm::dvec3 u) {
-  double around = std::atan2(u.z, u.y);  // 0 at the front, pi/2 at the top, pi at the back
-  if (around < -pi / 2.0) around += 2.0 * pi;
-  return smoothstep(-1.0, -0.6, around) * (1.0 - smoothstep(pi + 0.6, pi + 1.0, around));
+  // The height of the direction's projection on the midline plane: it ends where that dips 35 to 57
+  // degrees below the horizontal.
+  const double off_axis = std::sqrt(u.y * u.y + u.z * u.z);
+  if (off_axis <= 0.0) return 0.0;
+  return 1.0 - smoothstep(0.57, 0.84, -u.z / off_axis);
 }
 
 // Signed distance (mm, like x) from the midline, measured on the hull.
@@ -69,19 +71,19 @@ glm::dvec3 move_on_sphere(glm::dvec3 u, glm::dvec3 t, double angle) {
 }
 
 struct FissureDesign {
-  double depth_mm = 25.0;          // below the hemisphere tops
-  double bottom_radius_mm = 1.5;   // in the rim's scale: the walls converge with depth (a radial surface)
-  double lip_radius_mm = 3.0;
-  double wall_angle_rad = 87.0 * degrees;
+  double depth_mm = 25.0;  // below the hemisphere tops
+  // Bottom radius 1.5 mm, lip radius 3 mm, walls at 87 degrees, in the rim's scale: the walls converge
+  // with depth (a radial surface).
+  detail::SlotShape shape{1.5, 3.0, 87.0 * degrees};
 };
 
 struct SulcusDesign {
   int wave_degree = 15;            // crest to crest about pi R / sqrt(l (l + 1)): 12 to 17 mm
   std::uint64_t seed = 0x70616c70617465ull;
   double depth_mm = 13.0;          // 10 to 13 mm, deeper where the wave is strong
-  double bottom_radius_mm = 1.0;   // in phase units; a little wider on the surface, see read()
-  double lip_radius_mm = 1.2;
-  double wall_angle_rad = 85.0 * degrees;
+  // Bottom radius 1 mm, lip radius 1.2 mm, walls at 85 degrees, in phase units: a little wider on the
+  // surface, where the wave's phase changes slower than the nominal wavenumber says (see read()).
+  detail::SlotShape shape{1.0, 1.2, 85.0 * degrees};
   double midline_free_mm = 11.0;   // no sulci this close to the midline where the fissure is...
   double fade_in_mm = 6.0;         // ...then they deepen over this distance
   // Where the wave and its slope are both small its phase turns fast around a point, which would make
@@ -176,16 +178,15 @@ class BrainShape {
   // A sulcus `depth_fraction` of the full depth deep, narrowed if needed to leave a crest between sulci.
   detail::SlotProfile sulcus_profile(double depth_fraction, double half_period) const {
     const double depth = sulci_.depth_mm * depth_fraction;
-    const detail::SlotProfile profile(depth, sulci_.bottom_radius_mm, sulci_.lip_radius_mm, sulci_.wall_angle_rad);
+    const detail::SlotProfile profile(depth, sulci_.shape);
     const double room = 0.6 * half_period / profile.half_width();
     if (room >= 1.0) return profile;
-    return {depth * room, sulci_.bottom_radius_mm * room, sulci_.lip_radius_mm * room, sulci_.wall_angle_rad};
+    return {depth * room, sulci_.shape, room};
   }
 
   // The fissure fades out by getting shallower, keeping its width.
   detail::SlotProfile fissure_profile(double presence) const {
-    return {fissure_.depth_mm * fissure_scale_ * presence, fissure_.bottom_radius_mm, fissure_.lip_radius_mm,
-            fissure_.wall_angle_rad};
+    return {fissure_.depth_mm * fissure_scale_ * presence, fissure_.shape};
   }
 
   SulcusDesign sulci_;

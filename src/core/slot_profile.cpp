@@ -12,13 +12,27 @@ constexpr double lip_density = 1.5;
 
 }  // namespace
 
-SlotProfile::SlotProfile(double depth, double bottom_radius, double lip_radius, double wall_angle_rad)
-    : depth_(depth), bottom_radius_(bottom_radius), lip_radius_(lip_radius) {
+SlotShape::SlotShape(double bottom_radius_mm, double lip_radius_mm, double wall_angle_rad)
+    : bottom_radius(bottom_radius_mm),
+      lip_radius(lip_radius_mm),
+      wall_angle(wall_angle_rad),
+      cos_wall(std::cos(wall_angle_rad)),
+      sin_wall(std::sin(wall_angle_rad)) {}
+
+SlotProfile::SlotProfile(double depth, const SlotShape& shape, double scale)
+    : depth_(depth),
+      bottom_radius_(shape.bottom_radius * scale),
+      lip_radius_(shape.lip_radius * scale),
+      wall_angle_(shape.wall_angle),
+      cos_wall_(shape.cos_wall),
+      sin_wall_(shape.sin_wall) {
   // The two arcs alone rise (bottom + lip radius) (1 - cos angle): a shallower groove turns less.
   const double arcs = bottom_radius_ + lip_radius_;
-  wall_angle_ = arcs > 0.0 ? std::min(wall_angle_rad, std::acos(std::max(-1.0, 1.0 - depth_ / arcs))) : wall_angle_rad;
-  cos_wall_ = std::cos(wall_angle_);
-  sin_wall_ = std::sin(wall_angle_);
+  if (depth_ < arcs * (1.0 - cos_wall_)) {
+    wall_angle_ = std::acos(std::max(-1.0, 1.0 - depth_ / arcs));
+    cos_wall_ = std::cos(wall_angle_);
+    sin_wall_ = std::sin(wall_angle_);
+  }
   bottom_length_ = bottom_radius_ * wall_angle_;
   wall_length_ = sin_wall_ > 0.0 ? std::max(0.0, depth_ - arcs * (1.0 - cos_wall_)) / sin_wall_ : 0.0;
   lip_length_ = lip_radius_ * wall_angle_;

@@ -9,10 +9,17 @@
 // narrows the groove with depth).
 namespace palpate::detail {
 
+// A groove's cross-section apart from its depth: radii in mm, wall angle in (0, pi/2).
+struct SlotShape {
+  SlotShape(double bottom_radius_mm, double lip_radius_mm, double wall_angle_rad);
+  double bottom_radius, lip_radius, wall_angle, cos_wall, sin_wall;
+};
+
 class SlotProfile {
  public:
-  // All lengths >= 0, wall angle in (0, pi/2).
-  SlotProfile(double depth, double bottom_radius, double lip_radius, double wall_angle_rad);
+  // A groove `depth` mm deep of `shape`, its radii scaled by `scale`. Needs no trigonometry unless the
+  // groove is too shallow for its arcs.
+  SlotProfile(double depth, const SlotShape& shape, double scale = 1.0);
 
   // Lateral distance from the centre line to where the lip meets the rim: half the groove's opening.
   double half_width() const noexcept { return rim_lateral_; }

@@ -13,7 +13,7 @@ namespace {
 constexpr double degrees = std::numbers::pi / 180.0;
 
 TEST(SlotProfile, PlacesTheCentreAtTheBottomAndTheCrestOnTheRim) {
-  const SlotProfile slot(12.0, 1.0, 1.5, 85.0 * degrees);
+  const SlotProfile slot(12.0, SlotShape(1.0, 1.5, 85.0 * degrees));
   const SlotProfile::Place centre = slot.place(0.0, 8.0), crest = slot.place(8.0, 8.0);
   EXPECT_DOUBLE_EQ(centre.lateral, 0.0);
   EXPECT_NEAR(centre.depth, 12.0, 1e-12);
@@ -25,7 +25,7 @@ TEST(SlotProfile, PlacesTheCentreAtTheBottomAndTheCrestOnTheRim) {
 }
 
 TEST(SlotProfile, PlacesPointsOnTheProfileInOrderAndEvenlyAlongIt) {
-  const SlotProfile slot(12.0, 1.0, 1.5, 85.0 * degrees);
+  const SlotProfile slot(12.0, SlotShape(1.0, 1.5, 85.0 * degrees));
   constexpr int steps = 400;
   double last_lateral = -1.0, total = 0.0;
   SlotProfile::Place previous = slot.place(0.0, 8.0);
@@ -49,14 +49,14 @@ TEST(SlotProfile, PlacesPointsOnTheProfileInOrderAndEvenlyAlongIt) {
 }
 
 TEST(SlotProfile, FadesToAFlatSurfaceAsItGetsShallow) {
-  const SlotProfile shallow(0.5, 1.0, 1.5, 85.0 * degrees);  // too shallow for its arcs at 85 degrees
+  const SlotProfile shallow(0.5, SlotShape(1.0, 1.5, 85.0 * degrees));  // too shallow for its arcs at 85 degrees
   double steepest = 0.0;
   for (double x = 0.0; x < 3.0; x += 0.01) {
     steepest = std::max(steepest, (shallow.depth_at(x) - shallow.depth_at(x + 0.01)) / 0.01);
   }
   EXPECT_NEAR(shallow.depth_at(0.0), 0.5, 1e-12);
   EXPECT_LT(steepest, 1.2);  // a gentle dip, no wall
-  const SlotProfile none(0.0, 1.0, 1.5, 85.0 * degrees);
+  const SlotProfile none(0.0, SlotShape(1.0, 1.5, 85.0 * degrees));
   EXPECT_EQ(none.half_width(), 0.0);
   EXPECT_EQ(none.place(3.0, 8.0).lateral, 3.0);
   EXPECT_EQ(none.place(3.0, 8.0).depth, 0.0);
