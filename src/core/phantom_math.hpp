@@ -19,4 +19,11 @@ inline double smooth_min(double a, double b, double k) {
 }
 inline double smooth_max(double a, double b, double k) { return -smooth_min(-a, -b, k); }
 
+// A bell of height 1 at d2 = 0 that vanishes for d2 >= 4, shaped like exp(-d2) near its top (d2: a
+// squared distance in units of the bell's width). Plain arithmetic, so the same on every machine.
+inline double bell(double d2) {
+  const double t = std::max(0.0, 1.0 - 0.25 * d2);
+  return (t * t) * (t * t);
+}
+
 }  // namespace palpate::detail

@@ -80,26 +80,26 @@ double neck_exit(glm::dvec3 w) {
   return std::min(smooth_min(side, floor, 30.0), ceiling);
 }
 
-double gaussian(glm::dvec3 p, glm::dvec3 centre, glm::dvec3 width) {
+double bump(glm::dvec3 p, glm::dvec3 centre, glm::dvec3 width) {
   const glm::dvec3 d = (p - centre) / width;
-  return std::exp(-glm::dot(d, d));
+  return detail::bell(glm::dot(d, d));
 }
 
 // Features of the face (mm outward) as functions of where the plain head's surface is.
 double face_relief(glm::dvec3 p) {
-  const double cheeks = 4.0 * (gaussian(p, {50.0, 70.0, -60.0}, {16.0, 25.0, 16.0}) +
-                               gaussian(p, {-50.0, 70.0, -60.0}, {16.0, 25.0, 16.0}));
+  const double cheeks = 4.0 * (bump(p, {50.0, 70.0, -60.0}, {16.0, 25.0, 16.0}) +
+                               bump(p, {-50.0, 70.0, -60.0}, {16.0, 25.0, 16.0}));
   const double front = smoothstep(50.0, 80.0, p.y);
   if (front <= 0.0) return cheeks;
   // The nose: a ridge from the root between the eyes down to the tip, widening toward the nostrils.
   const double nose_height = 20.0 * smoothstep(-24.0, -64.0, p.z) * (1.0 - smoothstep(-66.0, -78.0, p.z));
   const double nose_width = 6.0 + 7.0 * smoothstep(-30.0, -70.0, p.z);
-  const double nose = nose_height * std::exp(-(p.x / nose_width) * (p.x / nose_width));
-  const double brow = 5.0 * gaussian(p, {0.0, 92.0, -24.0}, {45.0, 30.0, 10.0});
-  const double eyes = -7.0 * (gaussian(p, {33.0, 92.0, -40.0}, {13.0, 30.0, 10.0}) +
-                              gaussian(p, {-33.0, 92.0, -40.0}, {13.0, 30.0, 10.0}));
-  const double lips = 5.0 * gaussian(p, {0.0, 96.0, -98.0}, {22.0, 30.0, 9.0});
-  const double chin = 10.0 * gaussian(p, {0.0, 85.0, -145.0}, {20.0, 30.0, 14.0});
+  const double nose = nose_height * detail::bell((p.x / nose_width) * (p.x / nose_width));
+  const double brow = 5.0 * bump(p, {0.0, 92.0, -24.0}, {45.0, 30.0, 10.0});
+  const double eyes = -7.0 * (bump(p, {33.0, 92.0, -40.0}, {13.0, 30.0, 10.0}) +
+                              bump(p, {-33.0, 92.0, -40.0}, {13.0, 30.0, 10.0}));
+  const double lips = 5.0 * bump(p, {0.0, 96.0, -98.0}, {22.0, 30.0, 9.0});
+  const double chin = 10.0 * bump(p, {0.0, 85.0, -145.0}, {20.0, 30.0, 14.0});
   return front * (nose + brow + eyes + lips + chin) + cheeks;
 }
 
