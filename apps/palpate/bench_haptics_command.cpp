@@ -14,12 +14,13 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
-#include "format.hpp"
 #include "cpu_burner.hpp"
+#include "format.hpp"
 #include "haptic_scenarios.hpp"
 #include "mesh_reference.hpp"
 #include "palpate/core/bvh.hpp"
 #include "palpate/core/error.hpp"
+#include "palpate/core/scene_file.hpp"
 #include "palpate/core/shapes.hpp"
 #include "palpate/haptics/haptic_loop.hpp"
 #include "palpate/haptics/loop_statistics.hpp"
@@ -104,13 +105,13 @@ SceneObject object(std::string name, Mesh mesh, Material material = {}) {
   return o;
 }
 
-// The paper's Table I meshes by their sizes: brain 68,856 and skin 90,207 vertices (137,708 and
-// 180,410 triangles as closed surfaces). Generated here as bumpy spheres of those sizes, the brain
-// inside the skin.
+// The paper's Table I meshes: the phantom brain (68,856 vertices) and skin (90,207), the brain
+// inside the skin, with the default scene's materials.
 Scene table1_scene(bool brain, bool skin) {
   Scene scene;
-  if (brain) scene.objects.push_back(object("brain", make_bumpy_sphere(70.0f, 1.5f, 2 * 68'856 - 4)));
-  if (skin) scene.objects.push_back(object("skin", make_bumpy_sphere(95.0f, 1.5f, 2 * 90'207 - 4)));
+  for (SceneObject& o : default_scene().objects) {
+    if ((o.name == "brain" && brain) || (o.name == "skin" && skin)) scene.objects.push_back(std::move(o));
+  }
   return scene;
 }
 
@@ -123,8 +124,7 @@ void bench_table1(const Options& options, Report& report) {
   CycleShape hover = press;
   hover.press_depth_mm = -3.0f;  // 2 to 4 mm above the surface
   hover.depth_amplitude_mm = 1.0f;
-  for (const Case& c : {Case{"brain-standin", true, false}, Case{"skin-standin", false, true},
-                        Case{"brain+skin-standin", true, true}}) {
+  for (const Case& c : {Case{"brain", true, false}, Case{"skin", false, true}, Case{"brain+skin", true, true}}) {
     progress("Table I mesh " + c.name);
     const Prepared prepared = prepare(table1_scene(c.brain, c.skin), c.name, report);
     const std::size_t touched = prepared.scene.objects.size() - 1;  // the skin when both
@@ -253,8 +253,7 @@ void print(const Report& report, const Options& options) {
               "contact, trailed the tip by more than 1 mm beyond the tip's depth. Inside is measured on the bumpy sphere's\n"
               "implicit surface or, on other meshes, by a grid of the mesh's triangles (ray parity and nearest\n"
               "triangle), independent of the BVH and the proxy. sphere-slide asks for 53,021 triangles and gets\n"
-              "53,022: a closed triangle mesh has an even count (each edge joins two triangles, so 3F = 2E).\n"
-              "The *-standin meshes are bumpy spheres with the Table I phantoms' triangle counts.\n");
+              "53,022: a closed triangle mesh has an even count (each edge joins two triangles, so 3F = 2E).\n");
 }
 
 nlohmann::json to_json(const Percentiles& p) { return {{"p50", p.p50}, {"p99", p.p99}, {"p999", p.p999}, {"max", p.max}}; }

@@ -2,8 +2,6 @@
 // phantom, the skin phantom and both together, at the paper's Table I sizes, checked tick by tick as in
 // proxy_moves_test.cpp (see proxy_move_tester.hpp).
 //
-// PENDING: palpate_core gets make_brain_phantom / make_skin_phantom from the `phantom` branch. Once it
-// is merged, move this file up to tests/haptics/ (the folder's *.cpp are globbed into the test target).
 #include <gtest/gtest.h>
 
 #include "haptic_test_scenes.hpp"
