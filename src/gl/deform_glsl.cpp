@@ -74,7 +74,7 @@ vec3 palpate_perturb_normal(vec3 world_normal, vec3 rest_world_position) {
 
 std::string_view deform_glsl() noexcept { return source; }
 
-std::string insert_deform_glsl(std::string_view shader_source) {
+std::string insert_deform_glsl(std::string_view shader_source, int dent_slots) {
   std::size_t insert_at = 0;
   const std::size_t version = shader_source.find("#version");
   if (version != std::string_view::npos) {
@@ -85,6 +85,7 @@ std::string insert_deform_glsl(std::string_view shader_source) {
   out.reserve(shader_source.size() + source.size() + 1);
   out.append(shader_source.substr(0, insert_at));
   if (insert_at > 0 && out.back() != '\n') out += '\n';
+  out += "#define PALPATE_DENT_SLOTS " + std::to_string(std::clamp(dent_slots, 1, max_dents)) + "\n";
   out.append(source);
   out.append(shader_source.substr(insert_at));
   return out;

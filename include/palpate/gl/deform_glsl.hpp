@@ -31,12 +31,15 @@ namespace palpate::gl {
 // The GLSL source (GLSL 3.30 or later, no #version line): the uniform block `PalpateDeform`,
 // `vec3 palpate_displace(vec3 world_position, vec3 world_normal)` for the vertex stage and
 // `vec3 palpate_perturb_normal(vec3 world_normal, vec3 rest_world_position)` for the fragment stage.
-// Both functions compile in either stage.
+// Both functions compile in either stage. They loop over PALPATE_DENT_SLOTS slots (default
+// max_dents), which a shader may #define before this source (insert_deform_glsl does).
 std::string_view deform_glsl() noexcept;
 
 // `shader_source` with deform_glsl() inserted right after its `#version` line (or in front, when it
-// has none). Allocates.
-std::string insert_deform_glsl(std::string_view shader_source);
+// has none), serving up to `dent_slots` dents (1..max_dents, PALPATE_DENT_SLOTS). The block is read
+// at constant offsets, slot by slot; on a GPU a slot past the current count costs a uniform branch,
+// on a software rasterizer (llvmpipe) a whole dent, so ask for no more slots than needed. Allocates.
+std::string insert_deform_glsl(std::string_view shader_source, int dent_slots = max_dents);
 
 inline constexpr const char* deform_block_name = "PalpateDeform";
 
