@@ -8,7 +8,7 @@ packages=(
   libglm-dev libcoin-dev libassimp-dev zlib1g-dev
   libtomlplusplus-dev libcli11-dev libstb-dev
   libepoxy-dev libegl-dev libegl1 libegl-mesa0 libgl1-mesa-dri libgl-dev libglfw3-dev libimgui-dev
-  libgtest-dev libgmock-dev libbenchmark-dev
+  libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev
   xvfb xauth gnuplot-nox
 )
 

@@ -12,4 +12,9 @@ int run_selected(CLI::App& app);
 
 void add_mesh_command(CLI::App& app);
 
+// The `bench` group, made on the first call and returned on later ones: each benchmark adds its
+// subcommand to it (bench haptics, bench render, ...).
+CLI::App& add_bench_command(CLI::App& app);
+void add_bench_render_command(CLI::App& app);
+
 }  // namespace palpate::cli

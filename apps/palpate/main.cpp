@@ -12,6 +12,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   app.set_version_flag("--version", "palpate 0.1.0");
   palpate::cli::add_mesh_command(app);
+  palpate::cli::add_bench_command(app);
+  palpate::cli::add_bench_render_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

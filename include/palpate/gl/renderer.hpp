@@ -37,15 +37,15 @@ enum class Shading {
 
 // Lights in eye space (x right, y up, the camera looking down -z), so they follow the camera.
 struct Lighting {
-  glm::vec3 direction{-0.35f, 0.45f, 0.82f};  // toward the directional light
-  glm::vec3 color{0.55f, 0.55f, 0.52f};
+  glm::vec3 direction{-0.6f, 0.55f, 0.55f};  // toward the directional light: upper left, so dents shade
+  glm::vec3 color{0.62f, 0.6f, 0.57f};
   glm::vec3 spot_position{0.0f, 60.0f, 0.0f};  // mm: a head lamp just above the eye
-  glm::vec3 spot_direction{0.0f, -0.25f, -1.0f};  // along the beam
-  float spot_inner_deg = 10.0f;  // full intensity inside, fading to zero at the outer angle
-  float spot_outer_deg = 22.0f;
-  glm::vec3 spot_color{0.55f, 0.53f, 0.5f};
-  glm::vec3 ambient{0.14f, 0.14f, 0.15f};
-  float specular = 0.25f;
+  glm::vec3 spot_direction{0.0f, -0.2f, -1.0f};  // along the beam
+  float spot_inner_deg = 8.0f;  // full intensity inside, fading to zero at the outer angle
+  float spot_outer_deg = 20.0f;
+  glm::vec3 spot_color{0.4f, 0.39f, 0.36f};
+  glm::vec3 ambient{0.1f, 0.1f, 0.11f};
+  float specular = 0.3f;
 };
 
 struct DrawOptions {
