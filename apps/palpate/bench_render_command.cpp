@@ -16,6 +16,7 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
+#include <malloc.h>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -169,6 +170,10 @@ std::string with_thousands(std::size_t n) {
 int bench_render(const BenchOptions& options) {
   const double seconds = options.seconds > 0.0 ? options.seconds : (options.quick ? 2.0 : 3.0);
   constexpr int rounds = 6;
+  // Mesa's llvmpipe frees its binned scene (tens of MB in 64 KB blocks) after every frame; with glibc's
+  // default trim threshold the heap then shrinks and grows back each frame, page faults and zeroing
+  // taking a quarter of the frame. Keeping the freed memory serves every variant alike.
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
   gl::HeadlessContext context;
   const std::string device = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   const bool timed = timer_queries_trustworthy(device);

@@ -2,8 +2,6 @@
 
 #include <epoxy/egl.h>
 
-#include <map>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -29,23 +27,6 @@ std::string egl_error_name(EGLint code) {
   }
 }
 
-// EGL displays are shared per device within a process: terminate one only when its last context goes.
-std::mutex display_mutex;
-std::map<EGLDisplay, int> display_users;
-
-void acquire_display(EGLDisplay display) {
-  const std::lock_guard lock(display_mutex);
-  ++display_users[display];
-}
-
-void release_display(EGLDisplay display) {
-  const std::lock_guard lock(display_mutex);
-  if (--display_users[display] == 0) {
-    display_users.erase(display);
-    eglTerminate(display);
-  }
-}
-
 }  // namespace
 
 struct HeadlessContext::State {
@@ -56,26 +37,23 @@ struct HeadlessContext::State {
 
 namespace {
 
-// Initialises `display` and creates a core context on it; on failure returns why (and leaves nothing).
+// Initialises `display` and creates a core context on it; on failure returns why.
 std::string try_display(EGLDisplay display, const HeadlessContextOptions& options, HeadlessContext::State& out) {
   if (display == EGL_NO_DISPLAY) return "no display (" + egl_error_name(eglGetError()) + ")";
   EGLint major = 0, minor = 0;
+  // An EGL display is one per device and process: it stays initialised for the life of the process
+  // (terminating it would end the other contexts on it, and unloads the driver).
   if (!eglInitialize(display, &major, &minor)) return "eglInitialize failed (" + egl_error_name(eglGetError()) + ")";
-  acquire_display(display);
-  const auto fail = [&](std::string why) {
-    release_display(display);
-    return why;
-  };
   if (!epoxy_has_egl_extension(display, "EGL_KHR_surfaceless_context")) {
-    return fail("EGL_KHR_surfaceless_context is missing");
+    return "EGL_KHR_surfaceless_context is missing";
   }
-  if (!eglBindAPI(EGL_OPENGL_API)) return fail("eglBindAPI(EGL_OPENGL_API) failed (" + egl_error_name(eglGetError()) + ")");
+  if (!eglBindAPI(EGL_OPENGL_API)) return "eglBindAPI(EGL_OPENGL_API) failed (" + egl_error_name(eglGetError()) + ")";
 
   const EGLint config_attributes[] = {EGL_SURFACE_TYPE, EGL_PBUFFER_BIT, EGL_RENDERABLE_TYPE, EGL_OPENGL_BIT, EGL_NONE};
   EGLConfig config = nullptr;
   EGLint config_count = 0;
   if (!eglChooseConfig(display, config_attributes, &config, 1, &config_count) || config_count < 1) {
-    if (!epoxy_has_egl_extension(display, "EGL_KHR_no_config_context")) return fail("no OpenGL-renderable EGL config");
+    if (!epoxy_has_egl_extension(display, "EGL_KHR_no_config_context")) return "no OpenGL-renderable EGL config";
     config = EGL_NO_CONFIG_KHR;
   }
   const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, options.major_version,
@@ -84,13 +62,13 @@ std::string try_display(EGLDisplay display, const HeadlessContextOptions& option
                                        EGL_NONE};
   const EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attributes);
   if (context == EGL_NO_CONTEXT) {
-    return fail("eglCreateContext for OpenGL " + std::to_string(options.major_version) + "." +
-                std::to_string(options.minor_version) + " core refused (" + egl_error_name(eglGetError()) + ")");
+    return "eglCreateContext for OpenGL " + std::to_string(options.major_version) + "." +
+           std::to_string(options.minor_version) + " core refused (" + egl_error_name(eglGetError()) + ")";
   }
   if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
     const std::string why = "eglMakeCurrent failed (" + egl_error_name(eglGetError()) + ")";
     eglDestroyContext(display, context);
-    return fail(why);
+    return why;
   }
   out.display = display;
   out.context = context;
@@ -146,7 +124,6 @@ HeadlessContext::~HeadlessContext() {
     eglMakeCurrent(state_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
   }
   eglDestroyContext(state_->display, state_->context);
-  release_display(state_->display);
 }
 
 void HeadlessContext::make_current() const {

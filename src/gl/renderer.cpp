@@ -235,6 +235,7 @@ void Renderer::upload(const Scene& scene) {
     object->transform = source.transform;
     object->material = source.material;
     object->clusters = cluster_triangles(object->mesh.indices, object->mesh.positions, triangles_per_cluster);
+    order_vertices_by_first_use(object->mesh);
     for (const TriangleCluster& cluster : object->clusters) {
       object->cluster_centers.push_back(glm::vec3(object->transform * glm::vec4(cluster.center, 1.0f)));
     }

@@ -67,4 +67,30 @@ std::vector<TriangleCluster> cluster_triangles(std::vector<std::uint32_t>& indic
   return clusters;
 }
 
+void order_vertices_by_first_use(Mesh& mesh) {
+  constexpr std::uint32_t unused = ~0u;
+  std::vector<std::uint32_t> new_index(mesh.positions.size(), unused);
+  std::vector<std::uint32_t> old_index;
+  old_index.reserve(mesh.positions.size());
+  for (std::uint32_t& index : mesh.indices) {
+    if (new_index[index] == unused) {
+      new_index[index] = static_cast<std::uint32_t>(old_index.size());
+      old_index.push_back(index);
+    }
+    index = new_index[index];
+  }
+  for (std::uint32_t i = 0; i < mesh.positions.size(); ++i) {  // vertices of no triangle go last
+    if (new_index[i] == unused) old_index.push_back(i);
+  }
+  const auto reorder = [&](std::vector<glm::vec3>& values) {
+    if (values.empty()) return;
+    std::vector<glm::vec3> ordered(values.size());
+    for (std::size_t i = 0; i < old_index.size(); ++i) ordered[i] = values[old_index[i]];
+    values = std::move(ordered);
+  };
+  reorder(mesh.positions);
+  reorder(mesh.normals);
+  reorder(mesh.colors);
+}
+
 }  // namespace palpate::gl
