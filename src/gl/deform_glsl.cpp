@@ -41,32 +41,44 @@ vec3 palpate_displace(vec3 world_position, vec3 world_normal) {
   return world_position - world_normal * g;
 }
 
-// The paper's per-fragment normal: N is rotated about W = N x VC by theta = atan(-G'(d)) toward the
-// contact point, G'(d) = -p d / sigma^2 exp(-d^2 / 2 sigma^2), one dent after the other.
+// The fragment stage: from the undeformed world position and normal interpolated to this fragment,
+// the displaced position V - N sum G(d), evaluated here (N as interpolated: of about unit length), and
+// the paper's per-fragment normal: N rotated about W = N x VC by theta = atan(-G'(d)) toward the contact
+// point, G'(d) = -p d / sigma^2 exp(-d^2 / 2 sigma^2), one dent after the other.
 // Without trigonometry: with T = (W x N) / |W x N|, the unit tangent toward c, the rotated normal is
 // cos(theta) (N + tan(theta) T); its direction is that of N + tan(theta) |N| T for any length of N, so
 // the scale is dropped and the result normalised once. W x N = VC |N|^2 - N (N.VC) has the length
 // |N| |N x VC|, so the step along it is tan(theta) / |N x VC| = (p / sigma^2) exp(-d^2 / 2 sigma^2)
 // sqrt(d^2 / |N x VC|^2), with |N x VC|^2 = |N|^2 d^2 - (N.VC)^2.
-// rest_world_position is the undeformed position: d is the same as in palpate_displace. No tilt beyond
-// 4 sigma, nor where d = 0 or N is parallel to VC (|N x VC|^2 <= 1e-12 d^2 |N|^2, as the CPU twin).
-// Returns a unit vector.
-vec3 palpate_perturb_normal(vec3 world_normal, vec3 rest_world_position) {
+// d is measured from the undeformed position, as in palpate_displace. No tilt beyond 4 sigma, nor where
+// d = 0 or N is parallel to VC (|N x VC|^2 <= 1e-12 d^2 |N|^2, as the CPU twin). The normal comes out
+// of unit length.
+void palpate_deform_fragment(inout vec3 world_position, inout vec3 world_normal) {
   vec3 n = world_normal;
+  float g = 0.0;
   for (int i = 0; i < PALPATE_DENT_SLOTS; ++i) {
     if (i >= palpate_dent_count) break;
     vec4 center_depth = palpate_dent_center_depth[i];
     vec4 shape = palpate_dent_shape[i];
-    vec3 vc = center_depth.xyz - rest_world_position;
+    vec3 vc = center_depth.xyz - world_position;
     float d2 = dot(vc, vc);
     float nn = dot(n, n);
     float n_vc = dot(n, vc);
     float cross2 = nn * d2 - n_vc * n_vc;
-    float step = shape.z * exp(-d2 * shape.y) * sqrt(d2 / cross2);
-    bool tilts = d2 < shape.x && cross2 > 1e-12 * d2 * nn;
-    n += (vc * nn - n * n_vc) * (tilts ? step : 0.0);  // a select: step is not finite where the guard fails
-  }
-  return normalize(n);
+    float falloff = exp(-d2 * shape.y);  // G(d) / p
+    float step = shape.z * falloff * sqrt(d2 / cross2);
+    bool reaches = d2 < shape.x;
+    g += reaches ? center_depth.w * falloff : 0.0;
+    n += (vc * nn - n * n_vc) * (reaches && cross2 > 1e-12 * d2 * nn ? step : 0.0);  // a select: step is
+  }                                                                                 // not finite there
+  world_position -= world_normal * g;
+  world_normal = normalize(n);
+}
+
+// The perturbed unit normal alone (see palpate_deform_fragment).
+vec3 palpate_perturb_normal(vec3 world_normal, vec3 rest_world_position) {
+  palpate_deform_fragment(rest_world_position, world_normal);
+  return world_normal;
 }
 )glsl";
 

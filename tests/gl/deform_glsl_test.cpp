@@ -27,9 +27,13 @@ layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
 out vec3 displaced;
 out vec3 perturbed;
+out vec3 fragment_displaced;
 void main() {
   displaced = palpate_displace(position, normalize(normal));
   perturbed = palpate_perturb_normal(normal, position);
+  vec3 n = normalize(normal);
+  fragment_displaced = position;
+  palpate_deform_fragment(fragment_displaced, n);
   gl_Position = vec4(0.0);
 }
 )glsl";
@@ -47,7 +51,7 @@ GLuint compile(GLenum stage, const std::string& source) {
 }
 
 struct Captured {
-  std::vector<glm::vec3> displaced, perturbed;
+  std::vector<glm::vec3> displaced, perturbed, fragment_displaced;
 };
 
 // Runs `mesh`'s vertices (as points, rasterizer off) through the snippet with `dents` in the block.
@@ -57,8 +61,8 @@ Captured capture(const Mesh& mesh, std::span<const Dent> dents, int dent_slots =
   const GLuint fs = compile(GL_FRAGMENT_SHADER, empty_fragment);
   glAttachShader(program, vs);
   glAttachShader(program, fs);
-  const char* varyings[] = {"displaced", "perturbed"};
-  glTransformFeedbackVaryings(program, 2, varyings, GL_INTERLEAVED_ATTRIBS);
+  const char* varyings[] = {"displaced", "perturbed", "fragment_displaced"};
+  glTransformFeedbackVaryings(program, 3, varyings, GL_INTERLEAVED_ATTRIBS);
   glLinkProgram(program);
   GLint linked = 0;
   glGetProgramiv(program, GL_LINK_STATUS, &linked);
@@ -75,7 +79,7 @@ Captured capture(const Mesh& mesh, std::span<const Dent> dents, int dent_slots =
   glCreateBuffers(3, buffers);
   glNamedBufferStorage(buffers[0], static_cast<GLsizeiptr>(n * sizeof(glm::vec3)), mesh.positions.data(), 0);
   glNamedBufferStorage(buffers[1], static_cast<GLsizeiptr>(n * sizeof(glm::vec3)), mesh.normals.data(), 0);
-  glNamedBufferStorage(buffers[2], static_cast<GLsizeiptr>(2 * n * sizeof(glm::vec3)), nullptr, 0);
+  glNamedBufferStorage(buffers[2], static_cast<GLsizeiptr>(3 * n * sizeof(glm::vec3)), nullptr, 0);
   for (GLuint i = 0; i < 2; ++i) {
     glVertexArrayVertexBuffer(vao, i, buffers[i], 0, sizeof(glm::vec3));
     glEnableVertexArrayAttrib(vao, i);
@@ -93,7 +97,7 @@ Captured capture(const Mesh& mesh, std::span<const Dent> dents, int dent_slots =
   glEndTransformFeedback();
   glDisable(GL_RASTERIZER_DISCARD);
 
-  std::vector<glm::vec3> out(2 * n);
+  std::vector<glm::vec3> out(3 * n);
   glGetNamedBufferSubData(buffers[2], 0, static_cast<GLsizeiptr>(out.size() * sizeof(glm::vec3)), out.data());
   glUseProgram(0);
   glBindVertexArray(0);
@@ -107,8 +111,9 @@ Captured capture(const Mesh& mesh, std::span<const Dent> dents, int dent_slots =
 
   Captured captured;
   for (std::size_t i = 0; i < n; ++i) {
-    captured.displaced.push_back(out[2 * i]);
-    captured.perturbed.push_back(out[2 * i + 1]);
+    captured.displaced.push_back(out[3 * i]);
+    captured.perturbed.push_back(out[3 * i + 1]);
+    captured.fragment_displaced.push_back(out[3 * i + 2]);
   }
   return captured;
 }
@@ -135,6 +140,8 @@ TEST_F(DentedSphere, DisplacedPositionsEqualTheCpuReference) {
     const glm::vec3 v = mesh.positions[i], n = glm::normalize(mesh.normals[i]);
     const glm::vec3 cpu = displaced_position(v, n, dents);
     worst_relative = std::max(worst_relative, glm::distance(gpu.displaced[i], cpu) / glm::length(cpu));
+    // The fragment stage's own evaluation of the displacement, with which it lights the fragment.
+    worst_relative = std::max(worst_relative, glm::distance(gpu.fragment_displaced[i], cpu) / glm::length(cpu));
     // The displacement itself, to the depth of the deepest dent: a stricter view than the position.
     worst_displacement = std::max(worst_displacement, glm::distance(gpu.displaced[i] - v, cpu - v) / 4.0f);
     if (glm::distance(cpu, v) > 1e-3f) ++moved;

@@ -11,6 +11,9 @@
 //     pass `rest` and `world_normal` to the fragment stage
 // In its fragment shader:
 //     vec3 n = palpate_perturb_normal(world_normal_in, rest_in);  // unit, tilted into each dent
+// or, to light the displaced position without passing it as a third vector,
+//     vec3 p = rest_in, n = world_normal_in;
+//     palpate_deform_fragment(p, n);                           // p displaced, n perturbed
 // On the host, once: `DeformBlock block; block.attach(program);` and each frame:
 //     `block.update(dents); block.bind();` before drawing. The CPU twins of both functions are
 // palpate::displaced_position and palpate::perturbed_normal (palpate/core/deform.hpp); tests hold them
@@ -30,7 +33,8 @@ namespace palpate::gl {
 
 // The GLSL source (GLSL 3.30 or later, no #version line): the uniform block `PalpateDeform`,
 // `vec3 palpate_displace(vec3 world_position, vec3 world_normal)` for the vertex stage and
-// `vec3 palpate_perturb_normal(vec3 world_normal, vec3 rest_world_position)` for the fragment stage.
+// `vec3 palpate_perturb_normal(vec3 world_normal, vec3 rest_world_position)` and
+// `void palpate_deform_fragment(inout vec3 world_position, inout vec3 world_normal)` for the fragment stage.
 // Both functions compile in either stage. They loop over PALPATE_DENT_SLOTS slots (default
 // max_dents), which a shader may #define before this source (insert_deform_glsl does).
 std::string_view deform_glsl() noexcept;
