@@ -197,7 +197,7 @@ struct RenderObject {
 }  // namespace
 
 struct Renderer::State {
-  std::vector<Program> programs;  // indexed by variant_index
+  std::vector<Program> programs;  // indexed by program_index
   std::unique_ptr<GpuMesh> probe;  // unit sphere for the probe and contact-point markers
   std::vector<std::unique_ptr<RenderObject>> objects;
 
@@ -250,27 +250,36 @@ std::size_t Renderer::object_count() const noexcept { return state_->objects.siz
 namespace {
 
 // Per-frame uniforms shared by every program: camera and lights, in world space.
-void set_frame_uniforms(const Program& p, const glm::mat4& view, const glm::mat4& projection, const Lighting& lighting) {
-  const GLuint id = p.program.id();
-  const glm::mat4 eye_to_world = glm::inverse(view);
-  const glm::mat3 eye_to_world_rotation(eye_to_world);
-  const glm::mat4 view_projection = projection * view;
-  const glm::vec3 eye = glm::vec3(eye_to_world[3]);
-  const glm::vec3 light_direction = glm::normalize(eye_to_world_rotation * lighting.direction);
-  const glm::vec3 spot_position = glm::vec3(eye_to_world * glm::vec4(lighting.spot_position, 1.0f));
-  const glm::vec3 spot_direction = glm::normalize(eye_to_world_rotation * lighting.spot_direction);
-  const glm::vec2 spot_cos(std::cos(glm::radians(lighting.spot_outer_deg)), std::cos(glm::radians(lighting.spot_inner_deg)));
-  glProgramUniformMatrix4fv(id, p.view_projection, 1, GL_FALSE, glm::value_ptr(view_projection));
-  glProgramUniform3fv(id, p.eye_position, 1, glm::value_ptr(eye));
-  glProgramUniform3fv(id, p.light_direction, 1, glm::value_ptr(light_direction));
-  glProgramUniform3fv(id, p.light_color, 1, glm::value_ptr(lighting.color));
-  glProgramUniform3fv(id, p.spot_position, 1, glm::value_ptr(spot_position));
-  glProgramUniform3fv(id, p.spot_direction, 1, glm::value_ptr(spot_direction));
-  glProgramUniform2fv(id, p.spot_cos, 1, glm::value_ptr(spot_cos));
-  glProgramUniform3fv(id, p.spot_color, 1, glm::value_ptr(lighting.spot_color));
-  glProgramUniform3fv(id, p.ambient_color, 1, glm::value_ptr(lighting.ambient));
-  glProgramUniform1f(id, p.specular, lighting.specular);
-}
+struct FrameUniforms {
+  glm::mat4 view_projection;
+  glm::vec3 eye, light_direction, spot_position, spot_direction;
+  glm::vec2 spot_cos;
+
+  FrameUniforms(const glm::mat4& view, const glm::mat4& projection, const Lighting& lighting) {
+    const glm::mat4 eye_to_world = glm::inverse(view);
+    const glm::mat3 eye_to_world_rotation(eye_to_world);
+    view_projection = projection * view;
+    eye = glm::vec3(eye_to_world[3]);
+    light_direction = glm::normalize(eye_to_world_rotation * lighting.direction);
+    spot_position = glm::vec3(eye_to_world * glm::vec4(lighting.spot_position, 1.0f));
+    spot_direction = glm::normalize(eye_to_world_rotation * lighting.spot_direction);
+    spot_cos = {std::cos(glm::radians(lighting.spot_outer_deg)), std::cos(glm::radians(lighting.spot_inner_deg))};
+  }
+
+  void set(const Program& p, const Lighting& lighting) const noexcept {
+    const GLuint id = p.program.id();
+    glProgramUniformMatrix4fv(id, p.view_projection, 1, GL_FALSE, glm::value_ptr(view_projection));
+    glProgramUniform3fv(id, p.eye_position, 1, glm::value_ptr(eye));
+    glProgramUniform3fv(id, p.light_direction, 1, glm::value_ptr(light_direction));
+    glProgramUniform3fv(id, p.light_color, 1, glm::value_ptr(lighting.color));
+    glProgramUniform3fv(id, p.spot_position, 1, glm::value_ptr(spot_position));
+    glProgramUniform3fv(id, p.spot_direction, 1, glm::value_ptr(spot_direction));
+    glProgramUniform2fv(id, p.spot_cos, 1, glm::value_ptr(spot_cos));
+    glProgramUniform3fv(id, p.spot_color, 1, glm::value_ptr(lighting.spot_color));
+    glProgramUniform3fv(id, p.ambient_color, 1, glm::value_ptr(lighting.ambient));
+    glProgramUniform1f(id, p.specular, lighting.specular);
+  }
+};
 
 // Splits the object's clusters into those some dent reaches and those none does.
 void classify_clusters(RenderObject& object) {
@@ -355,7 +364,8 @@ void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection,
                              std::span<const Contact> probes, DrawResult& result) {
   const GlStateGuard guard(DeformBlock::default_binding);
   set_draw_state();
-  for (const Program& p : programs) set_frame_uniforms(p, view, projection, options.lighting);
+  const FrameUniforms frame(view, projection, options.lighting);
+  for (const Program& p : programs) frame.set(p, options.lighting);
 
   for (auto& pointer : objects) {
     RenderObject& object = *pointer;
