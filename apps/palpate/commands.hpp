@@ -18,6 +18,7 @@ void add_view_command(CLI::App& app);
 // subcommand to it (bench haptics, bench render, ...).
 CLI::App& add_bench_command(CLI::App& app);
 void add_bench_haptics_command(CLI::App& app);
+void add_bench_render_command(CLI::App& app);
 void add_bench_table1_command(CLI::App& app);
 
 }  // namespace palpate::cli

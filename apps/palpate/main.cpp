@@ -16,6 +16,7 @@ int main(int argc, char** argv) {
   palpate::cli::add_view_command(app);
   palpate::cli::add_bench_command(app);
   palpate::cli::add_bench_haptics_command(app);
+  palpate::cli::add_bench_render_command(app);
   palpate::cli::add_bench_table1_command(app);
   try {
     app.parse(argc, argv);

@@ -1,0 +1,36 @@
+#pragma once
+// An OpenGL core context with no window, over EGL: for tests, benchmarks, servers and PNG capture.
+// It first tries EGL_EXT_platform_device (each EGL device in turn: NVIDIA's driver, Mesa's llvmpipe
+// and GPU drivers), then Mesa's surfaceless platform. The context has no default framebuffer: draw into
+// a palpate::gl::Framebuffer. A context that cannot be created throws palpate::Error saying what was
+// tried and why each attempt failed.
+#include <memory>
+#include <string>
+
+namespace palpate::gl {
+
+struct HeadlessContextOptions {
+  int major_version = 4;  // OpenGL core profile version asked for
+  int minor_version = 5;
+};
+
+class HeadlessContext {
+ public:
+  // Creates the context and makes it current on the calling thread.
+  explicit HeadlessContext(HeadlessContextOptions options = {});
+  ~HeadlessContext();
+  HeadlessContext(const HeadlessContext&) = delete;
+  HeadlessContext& operator=(const HeadlessContext&) = delete;
+
+  // Makes the context current on the calling thread (throws palpate::Error on failure).
+  void make_current() const;
+  // How it was made, e.g. "EGL device 0 (EGL_MESA_device_software)" or "EGL Mesa surfaceless".
+  const std::string& platform() const noexcept;
+
+  struct State;  // EGL handles, defined in the .cpp
+
+ private:
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace palpate::gl

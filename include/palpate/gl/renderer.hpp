@@ -1,0 +1,101 @@
+#pragma once
+// palpate's renderer, a drop-in for an existing OpenGL 4.5 application: upload a scene once, then each
+// frame draw it deformed by the latest contacts inside the caller's own context and currently bound
+// framebuffer, with the caller's view and projection. Every piece of GL state it changes is saved and
+// restored, so the application's rendering is unaffected (viewport and framebuffer are the caller's:
+// it draws where the caller points it).
+//
+// Which dents deform which object: a Contact dents the object it touches (Contact::object) with that
+// object's Material::sigma_mm, as in the paper; or the caller passes ObjectDents, a dent per object,
+// explicitly. At most max_dents apply to one object; the rest are dropped and counted.
+//
+// Needs a current OpenGL 4.5 core context for all of its life (construction compiles its programs and
+// throws palpate::Error with the driver's log if one fails). Not thread-safe: use it on the thread of
+// its context.
+#include <memory>
+#include <span>
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+#include "palpate/core/contact.hpp"
+#include "palpate/core/deform.hpp"
+#include "palpate/core/scene.hpp"
+
+namespace palpate::gl {
+
+enum class Deformation {
+  gpu,        // the paper: vertices displaced and normals perturbed in the shaders
+  cpu_naive,  // the baseline the paper argues against: deform_mesh on the CPU each frame, uploaded
+  none,       // the undeformed scene, same lighting
+};
+
+enum class Shading {
+  lit,      // directional + spot light, per-object or per-vertex colour
+  normals,  // debug: the world-space shading normal as the colour (use a float target to read it)
+};
+
+// Lights in eye space (x right, y up, the camera looking down -z), so they follow the camera.
+struct Lighting {
+  glm::vec3 direction{-0.6f, 0.55f, 0.55f};  // toward the directional light: upper left, so dents shade
+  glm::vec3 color{0.62f, 0.6f, 0.57f};
+  glm::vec3 spot_position{0.0f, 60.0f, 0.0f};  // mm: a head lamp just above the eye
+  glm::vec3 spot_direction{0.0f, -0.2f, -1.0f};  // along the beam
+  float spot_inner_deg = 8.0f;  // full intensity inside, fading to zero at the outer angle
+  float spot_outer_deg = 20.0f;
+  glm::vec3 spot_color{0.4f, 0.39f, 0.36f};
+  glm::vec3 ambient{0.1f, 0.1f, 0.11f};
+  float specular = 0.3f;
+};
+
+struct DrawOptions {
+  Deformation deformation = Deformation::gpu;
+  Shading shading = Shading::lit;
+  // Draw the triangles that no dent reaches (all beyond 4 sigma) with the plain shader: the image is the
+  // same, the dent work is paid only near the dents. Off: every triangle runs the deforming shader, as
+  // in an application that uses the GLSL snippet on a whole mesh.
+  bool skip_unreached = true;
+  bool draw_probe = true;            // a sphere at each contact's HIP (the Contact overload only)
+  bool draw_contact_points = false;  // a small sphere at each dent's contact point
+  float probe_radius_mm = 1.5f;
+  glm::vec3 probe_color{0.75f, 0.78f, 0.85f};
+  glm::vec3 contact_point_color{1.0f, 0.8f, 0.1f};
+  Lighting lighting;
+};
+
+// A dent for one object, given explicitly.
+struct ObjectDent {
+  int object = -1;  // scene object index
+  Dent dent;
+};
+
+struct DrawResult {
+  int dropped_dents = 0;      // beyond max_dents for one object, or naming no uploaded object
+  int deformed_objects = 0;   // objects that had at least one dent
+};
+
+class Renderer {
+ public:
+  Renderer();
+  ~Renderer();
+  Renderer(const Renderer&) = delete;
+  Renderer& operator=(const Renderer&) = delete;
+
+  // Uploads the scene's meshes, transforms and materials (replacing any earlier scene). Keeps a copy of
+  // each mesh for the CPU-naive path. Allocates; throws palpate::Error for an invalid mesh.
+  void upload(const Scene& scene);
+  std::size_t object_count() const noexcept;
+
+  // Draws the uploaded scene with each in-contact Contact denting its object.
+  DrawResult draw(const glm::mat4& view, const glm::mat4& projection, std::span<const Contact> contacts,
+                  const DrawOptions& options = {});
+  // Draws the uploaded scene with the given dents.
+  DrawResult draw(const glm::mat4& view, const glm::mat4& projection, std::span<const ObjectDent> dents,
+                  const DrawOptions& options = {});
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+}  // namespace palpate::gl

@@ -1,0 +1,113 @@
+#include "render_shaders.hpp"
+
+#include <string_view>
+
+#include "palpate/gl/deform_glsl.hpp"
+
+namespace palpate::gl {
+namespace {
+
+constexpr std::string_view vertex_body = R"glsl(
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+uniform mat4 model;          // rigid: object frame to world
+uniform mat3 normal_matrix;  // its rotation
+uniform mat4 view_projection;
+// The undeformed world position and normal: the fragment stage deforms them itself (one interpolated
+// vector fewer than passing the displaced position too, which on a software rasterizer costs several
+// percent of the frame).
+out vec3 v_world;
+out vec3 v_normal;
+#ifdef PALPATE_VERTEX_COLORS
+layout(location = 2) in vec3 color;
+out vec3 v_color;
+#endif
+
+void main() {
+  vec3 world = (model * vec4(position, 1.0)).xyz;
+  vec3 n = normalize(normal_matrix * normal);
+  v_world = world;
+  v_normal = n;
+#ifdef PALPATE_VERTEX_COLORS
+  v_color = color;
+#endif
+#ifdef PALPATE_DEFORM
+  world = palpate_displace(world, n);
+#endif
+  gl_Position = view_projection * vec4(world, 1.0);
+}
+)glsl";
+
+// A directional light and a spot light (a head lamp by default), Blinn-Phong with the highlight
+// exponent 32 taken by squaring: pow() costs two transcendentals per light on a software rasterizer.
+constexpr std::string_view fragment_body = R"glsl(
+in vec3 v_world;
+in vec3 v_normal;
+#ifdef PALPATE_VERTEX_COLORS
+in vec3 v_color;
+#else
+uniform vec3 object_color;
+#endif
+uniform vec3 eye_position;
+uniform vec3 light_direction;  // unit, toward the light
+uniform vec3 light_color;
+uniform vec3 spot_position;
+uniform vec3 spot_direction;   // unit, along the beam
+uniform vec2 spot_cos;         // cos of the outer and inner cone half-angles
+uniform vec3 spot_color;
+uniform vec3 ambient_color;
+uniform float specular;
+out vec4 fragment;
+
+float highlight(float cosine) {
+  float x = max(cosine, 0.0);
+  x *= x; x *= x; x *= x; x *= x; x *= x;
+  return x;
+}
+
+void main() {
+  vec3 position = v_world;
+#ifdef PALPATE_DEFORM
+  vec3 n = v_normal;
+  palpate_deform_fragment(position, n);
+#else
+  vec3 n = normalize(v_normal);
+#endif
+#ifdef PALPATE_NORMALS
+  fragment = vec4(n, 1.0);
+#else
+#ifdef PALPATE_VERTEX_COLORS
+  vec3 albedo = v_color;
+#else
+  vec3 albedo = object_color;
+#endif
+  vec3 to_eye = normalize(eye_position - position);
+  vec3 to_spot = spot_position - position;
+  vec3 l = to_spot * inversesqrt(dot(to_spot, to_spot));
+  float cone = smoothstep(spot_cos.x, spot_cos.y, -dot(l, spot_direction));
+  vec3 diffuse = light_color * max(dot(n, light_direction), 0.0) + spot_color * (cone * max(dot(n, l), 0.0));
+  vec3 shine = light_color * highlight(dot(n, normalize(light_direction + to_eye))) +
+               spot_color * (cone * highlight(dot(n, normalize(l + to_eye))));
+  fragment = vec4(albedo * (ambient_color + diffuse) + specular * shine, 1.0);
+#endif
+}
+)glsl";
+
+std::string header(ShaderVariant variant) {
+  std::string text = "#version 450 core\n";
+  if (variant.dent_slots > 0) {
+    text += "#define PALPATE_DEFORM\n#define PALPATE_DENT_SLOTS " + std::to_string(variant.dent_slots) + "\n";
+  }
+  if (variant.normals) text += "#define PALPATE_NORMALS\n";
+  if (variant.vertex_colors) text += "#define PALPATE_VERTEX_COLORS\n";
+  if (variant.dent_slots > 0) text += deform_glsl();
+  return text;
+}
+
+}  // namespace
+
+std::string render_vertex_shader(ShaderVariant variant) { return header(variant) + std::string(vertex_body); }
+
+std::string render_fragment_shader(ShaderVariant variant) { return header(variant) + std::string(fragment_body); }
+
+}  // namespace palpate::gl

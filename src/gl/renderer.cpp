@@ -1,0 +1,432 @@
+#include "palpate/gl/renderer.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdint>
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <glm/matrix.hpp>
+#include <glm/trigonometric.hpp>
+#include <string>
+#include <vector>
+
+#include "gl_state_guard.hpp"
+#include "palpate/core/error.hpp"
+#include "palpate/core/shapes.hpp"
+#include "palpate/gl/deform_glsl.hpp"
+#include "palpate/gl/shader_program.hpp"
+#include "render_shaders.hpp"
+#include "triangle_clusters.hpp"
+
+namespace palpate::gl {
+namespace {
+
+constexpr std::size_t triangles_per_cluster = 128;
+constexpr GLuint attribute_position = 0, attribute_normal = 1, attribute_color = 2;
+
+// One linked program and where its uniforms are.
+struct Program {
+  ShaderProgram program;
+  GLint model = -1, normal_matrix = -1, view_projection = -1, object_color = -1, eye_position = -1;
+  GLint light_direction = -1, light_color = -1, spot_position = -1, spot_direction = -1, spot_cos = -1;
+  GLint spot_color = -1, ambient_color = -1, specular = -1;
+
+  explicit Program(ShaderVariant variant)
+      : program(std::string("palpate renderer (") +
+                    (variant.dent_slots ? "deform " + std::to_string(variant.dent_slots) + " dents" : "plain") +
+                    (variant.normals ? ", normals" : ", lit") + (variant.vertex_colors ? ", vertex colours)" : ")"),
+                render_vertex_shader(variant), render_fragment_shader(variant)) {
+    model = program.uniform("model");
+    normal_matrix = program.uniform("normal_matrix");
+    view_projection = program.uniform("view_projection");
+    object_color = program.uniform("object_color");
+    eye_position = program.uniform("eye_position");
+    light_direction = program.uniform("light_direction");
+    light_color = program.uniform("light_color");
+    spot_position = program.uniform("spot_position");
+    spot_direction = program.uniform("spot_direction");
+    spot_cos = program.uniform("spot_cos");
+    spot_color = program.uniform("spot_color");
+    ambient_color = program.uniform("ambient_color");
+    specular = program.uniform("specular");
+  }
+
+  void set_object(const glm::mat4& transform, glm::vec3 color) const noexcept {
+    const GLuint id = program.id();
+    const glm::mat3 rotation(transform);
+    glProgramUniformMatrix4fv(id, model, 1, GL_FALSE, glm::value_ptr(transform));
+    glProgramUniformMatrix3fv(id, normal_matrix, 1, GL_FALSE, glm::value_ptr(rotation));
+    glProgramUniform3fv(id, object_color, 1, glm::value_ptr(color));
+  }
+};
+
+// Deforming programs come for 1, 2, 4 and 8 dent slots: a dent costs its slot in every fragment on a
+// software rasterizer, so an object with one dent gets the one-slot program.
+constexpr int slot_counts[] = {0, 1, 2, 4, 8};
+constexpr std::size_t program_count = 4 * std::size(slot_counts);
+
+ShaderVariant program_variant(std::size_t index) {
+  return {slot_counts[index / 4], (index & 2) != 0, (index & 1) != 0};
+}
+
+std::size_t program_index(int dents, bool normals, bool vertex_colors) {
+  std::size_t slots = 0;
+  while (slot_counts[slots] < dents) ++slots;
+  return 4 * slots + (normals ? 2u : 0u) + (vertex_colors ? 1u : 0u);
+}
+
+// Ranges of the index buffer for one glMultiDrawElements call.
+struct DrawRanges {
+  std::vector<GLsizei> counts;
+  std::vector<const void*> offsets;
+
+  void clear() noexcept {
+    counts.clear();
+    offsets.clear();
+  }
+  // Appends the range, merging it with the last one when they touch.
+  void add(std::uint32_t first_index, std::uint32_t index_count) {
+    const auto* offset = reinterpret_cast<const void*>(static_cast<std::uintptr_t>(first_index) * sizeof(std::uint32_t));
+    if (!counts.empty() && static_cast<const char*>(offsets.back()) + counts.back() * sizeof(std::uint32_t) == offset) {
+      counts.back() += static_cast<GLsizei>(index_count);
+      return;
+    }
+    counts.push_back(static_cast<GLsizei>(index_count));
+    offsets.push_back(offset);
+  }
+  void draw() const noexcept {
+    if (!counts.empty()) {
+      glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(), static_cast<GLsizei>(counts.size()));
+    }
+  }
+};
+
+// A mesh in GPU buffers: interleaved position + normal, optional colours, indices.
+struct GpuMesh {
+  GLuint vertex_array = 0, vertex_buffer = 0, color_buffer = 0, index_buffer = 0;
+  GLsizei index_count = 0;
+
+  explicit GpuMesh(const Mesh& mesh) {
+    std::vector<glm::vec3> interleaved(2 * mesh.positions.size());
+    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+      interleaved[2 * i] = mesh.positions[i];
+      interleaved[2 * i + 1] = mesh.normals[i];
+    }
+    glCreateVertexArrays(1, &vertex_array);
+    glCreateBuffers(1, &vertex_buffer);
+    glNamedBufferStorage(vertex_buffer, static_cast<GLsizeiptr>(interleaved.size() * sizeof(glm::vec3)),
+                         interleaved.data(), 0);
+    glVertexArrayVertexBuffer(vertex_array, 0, vertex_buffer, 0, 2 * sizeof(glm::vec3));
+    glEnableVertexArrayAttrib(vertex_array, attribute_position);
+    glVertexArrayAttribFormat(vertex_array, attribute_position, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vertex_array, attribute_position, 0);
+    glEnableVertexArrayAttrib(vertex_array, attribute_normal);
+    glVertexArrayAttribFormat(vertex_array, attribute_normal, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3));
+    glVertexArrayAttribBinding(vertex_array, attribute_normal, 0);
+    if (!mesh.colors.empty()) {
+      glCreateBuffers(1, &color_buffer);
+      glNamedBufferStorage(color_buffer, static_cast<GLsizeiptr>(mesh.colors.size() * sizeof(glm::vec3)),
+                           mesh.colors.data(), 0);
+      glVertexArrayVertexBuffer(vertex_array, 1, color_buffer, 0, sizeof(glm::vec3));
+      glEnableVertexArrayAttrib(vertex_array, attribute_color);
+      glVertexArrayAttribFormat(vertex_array, attribute_color, 3, GL_FLOAT, GL_FALSE, 0);
+      glVertexArrayAttribBinding(vertex_array, attribute_color, 1);
+    }
+    glCreateBuffers(1, &index_buffer);
+    glNamedBufferStorage(index_buffer, static_cast<GLsizeiptr>(mesh.indices.size() * sizeof(std::uint32_t)),
+                         mesh.indices.data(), 0);
+    glVertexArrayElementBuffer(vertex_array, index_buffer);
+    index_count = static_cast<GLsizei>(mesh.indices.size());
+  }
+  ~GpuMesh() {
+    const GLuint buffers[] = {vertex_buffer, color_buffer, index_buffer};
+    glDeleteBuffers(3, buffers);
+    glDeleteVertexArrays(1, &vertex_array);
+  }
+  GpuMesh(const GpuMesh&) = delete;
+  GpuMesh& operator=(const GpuMesh&) = delete;
+};
+
+// The CPU-naive path's buffers: world positions and normals rewritten every frame, the object's indices.
+struct NaiveBuffers {
+  GLuint vertex_array = 0, position_buffer = 0, normal_buffer = 0;
+
+  NaiveBuffers(std::size_t vertices, GLuint index_buffer, GLuint color_buffer) {
+    const auto bytes = static_cast<GLsizeiptr>(vertices * sizeof(glm::vec3));
+    glCreateVertexArrays(1, &vertex_array);
+    glCreateBuffers(1, &position_buffer);
+    glCreateBuffers(1, &normal_buffer);
+    glNamedBufferData(position_buffer, bytes, nullptr, GL_STREAM_DRAW);
+    glNamedBufferData(normal_buffer, bytes, nullptr, GL_STREAM_DRAW);
+    const GLuint buffers[] = {position_buffer, normal_buffer, color_buffer};
+    const GLuint attributes[] = {attribute_position, attribute_normal, attribute_color};
+    for (GLuint i = 0; i < (color_buffer ? 3u : 2u); ++i) {
+      glVertexArrayVertexBuffer(vertex_array, i, buffers[i], 0, sizeof(glm::vec3));
+      glEnableVertexArrayAttrib(vertex_array, attributes[i]);
+      glVertexArrayAttribFormat(vertex_array, attributes[i], 3, GL_FLOAT, GL_FALSE, 0);
+      glVertexArrayAttribBinding(vertex_array, attributes[i], i);
+    }
+    glVertexArrayElementBuffer(vertex_array, index_buffer);
+  }
+  ~NaiveBuffers() {
+    const GLuint buffers[] = {position_buffer, normal_buffer};
+    glDeleteBuffers(2, buffers);
+    glDeleteVertexArrays(1, &vertex_array);
+  }
+  NaiveBuffers(const NaiveBuffers&) = delete;
+  NaiveBuffers& operator=(const NaiveBuffers&) = delete;
+};
+
+struct RenderObject {
+  Mesh mesh;  // object frame, triangles in cluster order (the CPU-naive path deforms it)
+  glm::mat4 transform{1.0f};
+  Material material;
+  std::vector<TriangleCluster> clusters;
+  std::vector<glm::vec3> cluster_centers;  // world
+  std::unique_ptr<GpuMesh> gpu;
+  std::unique_ptr<NaiveBuffers> naive;  // made on first CPU-naive draw
+  Mesh deformed;                        // the CPU-naive path's scratch
+  DeformBlock block;
+  std::array<Dent, max_dents> dents{};
+  int dent_count = 0;
+  DrawRanges reached, unreached;  // per-frame scratch
+};
+
+}  // namespace
+
+struct Renderer::State {
+  std::vector<Program> programs;  // indexed by program_index
+  std::unique_ptr<GpuMesh> probe;  // unit sphere for the probe and contact-point markers
+  std::vector<std::unique_ptr<RenderObject>> objects;
+
+  // The program for `dents` dents (0: the plain program).
+  const Program& program(int dents, Shading shading, bool vertex_colors) const {
+    return programs[program_index(dents, shading == Shading::normals, vertex_colors)];
+  }
+  // Adds a dent to the object's list; returns 1 when the list is full and the dent is dropped.
+  static int add_dent(RenderObject& object, const Dent& dent) noexcept;
+  void render(const glm::mat4& view, const glm::mat4& projection, const DrawOptions& options,
+              std::span<const Contact> probes, DrawResult& result);
+};
+
+Renderer::Renderer() : state_(std::make_unique<State>()) {
+  state_->programs.reserve(program_count);
+  for (std::size_t i = 0; i < program_count; ++i) state_->programs.emplace_back(program_variant(i));
+  const DeformBlock binding_only;
+  for (std::size_t i = 4; i < program_count; ++i) binding_only.attach(state_->programs[i].program.id());
+  state_->probe = std::make_unique<GpuMesh>(make_sphere(1.0f, 642));
+}
+
+Renderer::~Renderer() = default;
+
+void Renderer::upload(const Scene& scene) {
+  std::vector<std::unique_ptr<RenderObject>> objects;
+  objects.reserve(scene.objects.size());
+  for (const SceneObject& source : scene.objects) {
+    const std::string what = "scene object '" + source.name + "'";
+    validate_mesh(source.mesh, what);
+    if (!(source.material.sigma_mm > 0.0f) || !std::isfinite(source.material.sigma_mm)) {
+      throw Error(what + ": sigma must be positive and finite, got " + std::to_string(source.material.sigma_mm));
+    }
+    auto object = std::make_unique<RenderObject>();
+    object->mesh = source.mesh;
+    object->transform = source.transform;
+    object->material = source.material;
+    object->clusters = cluster_triangles(object->mesh.indices, object->mesh.positions, triangles_per_cluster);
+    order_vertices_by_first_use(object->mesh);
+    for (const TriangleCluster& cluster : object->clusters) {
+      object->cluster_centers.push_back(glm::vec3(object->transform * glm::vec4(cluster.center, 1.0f)));
+    }
+    object->gpu = std::make_unique<GpuMesh>(object->mesh);
+    objects.push_back(std::move(object));
+  }
+  state_->objects = std::move(objects);
+}
+
+std::size_t Renderer::object_count() const noexcept { return state_->objects.size(); }
+
+namespace {
+
+// Per-frame uniforms shared by every program: camera and lights, in world space.
+struct FrameUniforms {
+  glm::mat4 view_projection;
+  glm::vec3 eye, light_direction, spot_position, spot_direction;
+  glm::vec2 spot_cos;
+
+  FrameUniforms(const glm::mat4& view, const glm::mat4& projection, const Lighting& lighting) {
+    const glm::mat4 eye_to_world = glm::inverse(view);
+    const glm::mat3 eye_to_world_rotation(eye_to_world);
+    view_projection = projection * view;
+    eye = glm::vec3(eye_to_world[3]);
+    light_direction = glm::normalize(eye_to_world_rotation * lighting.direction);
+    spot_position = glm::vec3(eye_to_world * glm::vec4(lighting.spot_position, 1.0f));
+    spot_direction = glm::normalize(eye_to_world_rotation * lighting.spot_direction);
+    spot_cos = {std::cos(glm::radians(lighting.spot_outer_deg)), std::cos(glm::radians(lighting.spot_inner_deg))};
+  }
+
+  void set(const Program& p, const Lighting& lighting) const noexcept {
+    const GLuint id = p.program.id();
+    glProgramUniformMatrix4fv(id, p.view_projection, 1, GL_FALSE, glm::value_ptr(view_projection));
+    glProgramUniform3fv(id, p.eye_position, 1, glm::value_ptr(eye));
+    glProgramUniform3fv(id, p.light_direction, 1, glm::value_ptr(light_direction));
+    glProgramUniform3fv(id, p.light_color, 1, glm::value_ptr(lighting.color));
+    glProgramUniform3fv(id, p.spot_position, 1, glm::value_ptr(spot_position));
+    glProgramUniform3fv(id, p.spot_direction, 1, glm::value_ptr(spot_direction));
+    glProgramUniform2fv(id, p.spot_cos, 1, glm::value_ptr(spot_cos));
+    glProgramUniform3fv(id, p.spot_color, 1, glm::value_ptr(lighting.spot_color));
+    glProgramUniform3fv(id, p.ambient_color, 1, glm::value_ptr(lighting.ambient));
+    glProgramUniform1f(id, p.specular, lighting.specular);
+  }
+};
+
+// Splits the object's clusters into those some dent reaches and those none does.
+void classify_clusters(RenderObject& object) {
+  object.reached.clear();
+  object.unreached.clear();
+  for (std::size_t c = 0; c < object.clusters.size(); ++c) {
+    const TriangleCluster& cluster = object.clusters[c];
+    bool reached = false;
+    for (int i = 0; i < object.dent_count && !reached; ++i) {
+      const Dent& dent = object.dents[static_cast<std::size_t>(i)];
+      // A little slack on the sphere so that rounding can only ever send a cluster to the deforming side.
+      const float reach = dent_cutoff_sigmas * dent.sigma_mm + cluster.radius * 1.001f + 1e-3f;
+      const glm::vec3 offset = object.cluster_centers[c] - dent.center;
+      reached = glm::dot(offset, offset) < reach * reach;
+    }
+    (reached ? object.reached : object.unreached).add(cluster.first_index, cluster.index_count);
+  }
+}
+
+void draw_all(const GpuMesh& mesh) noexcept {
+  glDrawElements(GL_TRIANGLES, mesh.index_count, GL_UNSIGNED_INT, nullptr);
+}
+
+void set_draw_state() noexcept {
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  glDepthMask(GL_TRUE);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
+  glDisable(GL_BLEND);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+}
+
+// A sphere of `radius` at `center`, for the probe and the contact points.
+void draw_marker(const Program& program, const GpuMesh& sphere, glm::vec3 center, float radius, glm::vec3 color) {
+  program.set_object(glm::scale(glm::translate(glm::mat4(1.0f), center), glm::vec3(radius)), color);
+  draw_all(sphere);
+}
+
+}  // namespace
+
+DrawResult Renderer::draw(const glm::mat4& view, const glm::mat4& projection, std::span<const Contact> contacts,
+                          const DrawOptions& options) {
+  DrawResult result;
+  for (auto& object : state_->objects) object->dent_count = 0;
+  for (const Contact& contact : contacts) {
+    if (!contact.in_contact()) continue;
+    if (static_cast<std::size_t>(contact.object) >= state_->objects.size()) {
+      ++result.dropped_dents;
+      continue;
+    }
+    RenderObject& object = *state_->objects[static_cast<std::size_t>(contact.object)];
+    result.dropped_dents += state_->add_dent(object, dent_from_contact(contact, object.material.sigma_mm));
+  }
+  state_->render(view, projection, options, options.draw_probe ? contacts : std::span<const Contact>(), result);
+  return result;
+}
+
+DrawResult Renderer::draw(const glm::mat4& view, const glm::mat4& projection, std::span<const ObjectDent> dents,
+                          const DrawOptions& options) {
+  DrawResult result;
+  for (auto& object : state_->objects) object->dent_count = 0;
+  for (const ObjectDent& entry : dents) {
+    if (entry.object < 0 || static_cast<std::size_t>(entry.object) >= state_->objects.size()) {
+      ++result.dropped_dents;
+      continue;
+    }
+    result.dropped_dents += state_->add_dent(*state_->objects[static_cast<std::size_t>(entry.object)], entry.dent);
+  }
+  state_->render(view, projection, options, {}, result);
+  return result;
+}
+
+int Renderer::State::add_dent(RenderObject& object, const Dent& dent) noexcept {
+  if (object.dent_count == max_dents) return 1;
+  object.dents[static_cast<std::size_t>(object.dent_count++)] = dent;
+  return 0;
+}
+
+void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection, const DrawOptions& options,
+                             std::span<const Contact> probes, DrawResult& result) {
+  const GlStateGuard guard(DeformBlock::default_binding);
+  set_draw_state();
+  const FrameUniforms frame(view, projection, options.lighting);
+  for (const Program& p : programs) frame.set(p, options.lighting);
+
+  for (auto& pointer : objects) {
+    RenderObject& object = *pointer;
+    if (!object.material.visible) continue;
+    const bool colors = object.gpu->color_buffer != 0;
+    const Program& plain = program(0, options.shading, colors);
+    const std::span<const Dent> object_dents(object.dents.data(), static_cast<std::size_t>(object.dent_count));
+    if (object.dent_count > 0) ++result.deformed_objects;
+
+    if (object.dent_count == 0 || options.deformation == Deformation::none) {
+      plain.set_object(object.transform, object.material.color);
+      glUseProgram(plain.program.id());
+      glBindVertexArray(object.gpu->vertex_array);
+      draw_all(*object.gpu);
+    } else if (options.deformation == Deformation::cpu_naive) {
+      deform_mesh(object.mesh, object.transform, object_dents, object.deformed);
+      if (!object.naive) {
+        object.naive = std::make_unique<NaiveBuffers>(object.mesh.vertex_count(), object.gpu->index_buffer,
+                                                      object.gpu->color_buffer);
+      }
+      const auto bytes = static_cast<GLsizeiptr>(object.deformed.positions.size() * sizeof(glm::vec3));
+      glNamedBufferSubData(object.naive->position_buffer, 0, bytes, object.deformed.positions.data());
+      glNamedBufferSubData(object.naive->normal_buffer, 0, bytes, object.deformed.normals.data());
+      plain.set_object(glm::mat4(1.0f), object.material.color);  // deform_mesh gives world coordinates
+      glUseProgram(plain.program.id());
+      glBindVertexArray(object.naive->vertex_array);
+      draw_all(*object.gpu);
+    } else {
+      const Program& deform = program(object.dent_count, options.shading, colors);
+      object.block.update(object_dents);
+      object.block.bind();
+      deform.set_object(object.transform, object.material.color);
+      glBindVertexArray(object.gpu->vertex_array);
+      if (options.skip_unreached) {
+        classify_clusters(object);
+        plain.set_object(object.transform, object.material.color);
+        glUseProgram(plain.program.id());
+        object.unreached.draw();
+        glUseProgram(deform.program.id());
+        object.reached.draw();
+      } else {
+        glUseProgram(deform.program.id());
+        draw_all(*object.gpu);
+      }
+    }
+  }
+
+  const Program& marker = program(0, options.shading, false);
+  glUseProgram(marker.program.id());
+  glBindVertexArray(probe->vertex_array);
+  for (const Contact& contact : probes) {
+    draw_marker(marker, *probe, contact.hip, options.probe_radius_mm, options.probe_color);
+  }
+  if (options.draw_contact_points) {
+    for (const auto& object : objects) {
+      for (int i = 0; i < object->dent_count; ++i) {
+        draw_marker(marker, *probe, object->dents[static_cast<std::size_t>(i)].center, 0.5f * options.probe_radius_mm,
+                    options.contact_point_color);
+      }
+    }
+  }
+}
+
+}  // namespace palpate::gl

@@ -1,0 +1,238 @@
+// The GLSL deformation against its CPU twin (palpate/core/deform.hpp), read back by transform feedback,
+// and the std140 block against the layout the driver reports.
+#include "palpate/gl/deform_glsl.hpp"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/trigonometric.hpp>
+#include <string>
+#include <vector>
+
+#include "gl_test_context.hpp"
+#include "palpate/core/error.hpp"
+#include "palpate/core/shapes.hpp"
+#include "palpate/gl/framebuffer.hpp"
+#include "palpate/gl/shader_program.hpp"
+
+namespace palpate::gl {
+namespace {
+
+// A vertex shader that feeds the snippet's two functions with each vertex and captures their results.
+constexpr const char* capture_vertex = R"glsl(#version 450 core
+layout(location = 0) in vec3 position;
+layout(location = 1) in vec3 normal;
+out vec3 displaced;
+out vec3 perturbed;
+out vec3 fragment_displaced;
+void main() {
+  displaced = palpate_displace(position, normalize(normal));
+  perturbed = palpate_perturb_normal(normal, position);
+  vec3 n = normalize(normal);
+  fragment_displaced = position;
+  palpate_deform_fragment(fragment_displaced, n);
+  gl_Position = vec4(0.0);
+}
+)glsl";
+constexpr const char* empty_fragment = "#version 450 core\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n";
+
+GLuint compile(GLenum stage, const std::string& source) {
+  const GLuint shader = glCreateShader(stage);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = 0;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  EXPECT_EQ(ok, GL_TRUE);
+  return shader;
+}
+
+struct Captured {
+  std::vector<glm::vec3> displaced, perturbed, fragment_displaced;
+};
+
+// Runs `mesh`'s vertices (as points, rasterizer off) through the snippet with `dents` in the block.
+Captured capture(const Mesh& mesh, std::span<const Dent> dents, int dent_slots = max_dents) {
+  const GLuint program = glCreateProgram();
+  const GLuint vs = compile(GL_VERTEX_SHADER, insert_deform_glsl(capture_vertex, dent_slots));
+  const GLuint fs = compile(GL_FRAGMENT_SHADER, empty_fragment);
+  glAttachShader(program, vs);
+  glAttachShader(program, fs);
+  const char* varyings[] = {"displaced", "perturbed", "fragment_displaced"};
+  glTransformFeedbackVaryings(program, 3, varyings, GL_INTERLEAVED_ATTRIBS);
+  glLinkProgram(program);
+  GLint linked = 0;
+  glGetProgramiv(program, GL_LINK_STATUS, &linked);
+  EXPECT_EQ(linked, GL_TRUE);
+
+  DeformBlock block;
+  block.attach(program);
+  block.update(dents);
+  block.bind();
+
+  const std::size_t n = mesh.vertex_count();
+  GLuint vao = 0, buffers[3] = {};
+  glCreateVertexArrays(1, &vao);
+  glCreateBuffers(3, buffers);
+  glNamedBufferStorage(buffers[0], static_cast<GLsizeiptr>(n * sizeof(glm::vec3)), mesh.positions.data(), 0);
+  glNamedBufferStorage(buffers[1], static_cast<GLsizeiptr>(n * sizeof(glm::vec3)), mesh.normals.data(), 0);
+  glNamedBufferStorage(buffers[2], static_cast<GLsizeiptr>(3 * n * sizeof(glm::vec3)), nullptr, 0);
+  for (GLuint i = 0; i < 2; ++i) {
+    glVertexArrayVertexBuffer(vao, i, buffers[i], 0, sizeof(glm::vec3));
+    glEnableVertexArrayAttrib(vao, i);
+    glVertexArrayAttribFormat(vao, i, 3, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, i, i);
+  }
+  const Framebuffer target({1, 1});  // a surfaceless context has no default framebuffer to draw with
+  target.bind();
+  glUseProgram(program);
+  glBindVertexArray(vao);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffers[2]);
+  glEnable(GL_RASTERIZER_DISCARD);
+  glBeginTransformFeedback(GL_POINTS);
+  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(n));
+  glEndTransformFeedback();
+  glDisable(GL_RASTERIZER_DISCARD);
+
+  std::vector<glm::vec3> out(3 * n);
+  glGetNamedBufferSubData(buffers[2], 0, static_cast<GLsizeiptr>(out.size() * sizeof(glm::vec3)), out.data());
+  glUseProgram(0);
+  glBindVertexArray(0);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDeleteVertexArrays(1, &vao);
+  glDeleteBuffers(3, buffers);
+  glDeleteProgram(program);
+  glDeleteShader(vs);
+  glDeleteShader(fs);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+
+  Captured captured;
+  for (std::size_t i = 0; i < n; ++i) {
+    captured.displaced.push_back(out[3 * i]);
+    captured.perturbed.push_back(out[3 * i + 1]);
+    captured.fragment_displaced.push_back(out[3 * i + 2]);
+  }
+  return captured;
+}
+
+// atan2 of |a x b| and a.b keeps its precision for small angles, where acos of a float does not (0.02 deg).
+float angle_deg(glm::vec3 a, glm::vec3 b) {
+  return glm::degrees(std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)));
+}
+
+// A bumpy sphere (normals not along the radius) under overlapping dents of different spreads.
+struct DentedSphere : testing::Test {
+  Mesh mesh = make_bumpy_sphere(40.0f, 2.0f, 60000);
+  std::vector<Dent> dents{{{0.0f, -41.0f, 3.0f}, 4.0f, 5.0f},
+                          {{6.0f, -40.0f, 8.0f}, 2.5f, 3.0f},
+                          {{-10.0f, -35.0f, -15.0f}, 3.0f, 12.0f}};
+  void SetUp() override { test::gl_context(); }
+};
+
+TEST_F(DentedSphere, DisplacedPositionsEqualTheCpuReference) {
+  const Captured gpu = capture(mesh, dents);
+  std::size_t moved = 0;
+  float worst_relative = 0.0f, worst_displacement = 0.0f;
+  for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+    const glm::vec3 v = mesh.positions[i], n = glm::normalize(mesh.normals[i]);
+    const glm::vec3 cpu = displaced_position(v, n, dents);
+    worst_relative = std::max(worst_relative, glm::distance(gpu.displaced[i], cpu) / glm::length(cpu));
+    // The fragment stage's own evaluation of the displacement, with which it lights the fragment.
+    worst_relative = std::max(worst_relative, glm::distance(gpu.fragment_displaced[i], cpu) / glm::length(cpu));
+    // The displacement itself, to the depth of the deepest dent: a stricter view than the position.
+    worst_displacement = std::max(worst_displacement, glm::distance(gpu.displaced[i] - v, cpu - v) / 4.0f);
+    if (glm::distance(cpu, v) > 1e-3f) ++moved;
+  }
+  EXPECT_LE(worst_relative, 1e-5f);
+  EXPECT_LE(worst_displacement, 1e-5f);
+  EXPECT_GT(moved, 500u);  // the dents do move a good many vertices
+}
+
+TEST_F(DentedSphere, PerturbedNormalsEqualTheCpuReference) {
+  const Captured gpu = capture(mesh, dents);
+  float worst = 0.0f, largest_tilt = 0.0f;
+  for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+    const glm::vec3 cpu = perturbed_normal(glm::normalize(mesh.normals[i]), mesh.positions[i], dents);
+    EXPECT_NEAR(glm::length(gpu.perturbed[i]), 1.0f, 1e-5f);
+    worst = std::max(worst, angle_deg(gpu.perturbed[i], cpu));
+    largest_tilt = std::max(largest_tilt, angle_deg(cpu, mesh.normals[i]));
+  }
+  EXPECT_LE(worst, 1e-3f);
+  EXPECT_GT(largest_tilt, 20.0f);
+}
+
+TEST_F(DentedSphere, FewerSlotsThanDentsIgnoreTheRest) {
+  const Captured gpu = capture(mesh, dents, 1);
+  const std::span<const Dent> first(dents.data(), 1);
+  for (std::size_t i = 0; i < mesh.vertex_count(); i += 7) {
+    const glm::vec3 v = mesh.positions[i], n = glm::normalize(mesh.normals[i]);
+    EXPECT_LE(glm::distance(gpu.displaced[i], displaced_position(v, n, first)), 1e-4f);
+  }
+}
+
+TEST_F(DentedSphere, UpToMaxDentsSuperposeAndTheRestAreDropped) {
+  std::vector<Dent> many;
+  for (int i = 0; i < max_dents + 2; ++i) {
+    many.push_back({{-40.0f + 8.0f * float(i), -39.0f, 0.0f}, 1.0f + 0.25f * float(i), 4.0f});
+  }
+  DeformBlock block;
+  EXPECT_EQ(block.update(many), 2);
+  const Captured gpu = capture(mesh, many);
+  const std::span<const Dent> kept(many.data(), max_dents);
+  for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+    const glm::vec3 v = mesh.positions[i], n = glm::normalize(mesh.normals[i]);
+    ASSERT_LE(glm::distance(gpu.displaced[i], displaced_position(v, n, kept)), 1e-4f) << "vertex " << i;
+  }
+}
+
+TEST(DeformBlockLayout, MatchesTheDriversStd140Offsets) {
+  test::gl_context();
+  const ShaderProgram program("layout probe", insert_deform_glsl(capture_vertex), empty_fragment);
+  const GLuint block = glGetUniformBlockIndex(program.id(), deform_block_name);
+  ASSERT_NE(block, GL_INVALID_INDEX);
+  GLint size = 0;
+  glGetActiveUniformBlockiv(program.id(), block, GL_UNIFORM_BLOCK_DATA_SIZE, &size);
+  EXPECT_EQ(static_cast<std::size_t>(size), sizeof(DeformBlockData));
+  const char* names[] = {"palpate_dent_center_depth[0]", "palpate_dent_shape[0]", "palpate_dent_count"};
+  GLuint indices[3] = {};
+  glGetUniformIndices(program.id(), 3, names, indices);
+  GLint offsets[3] = {};
+  glGetActiveUniformsiv(program.id(), 3, indices, GL_UNIFORM_OFFSET, offsets);
+  EXPECT_EQ(offsets[0], static_cast<GLint>(offsetof(DeformBlockData, center_depth)));
+  EXPECT_EQ(offsets[1], static_cast<GLint>(offsetof(DeformBlockData, shape)));
+  EXPECT_EQ(offsets[2], static_cast<GLint>(offsetof(DeformBlockData, count)));
+}
+
+TEST(DeformBlockData, HoldsTheDerivedTermsOfEachDent) {
+  const Dent dents[] = {{{1.0f, 2.0f, 3.0f}, 4.0f, 5.0f}};
+  const DeformBlockData data = make_deform_block_data(dents);
+  EXPECT_EQ(data.count, 1);
+  EXPECT_EQ(data.center_depth[0], glm::vec4(1.0f, 2.0f, 3.0f, 4.0f));
+  EXPECT_FLOAT_EQ(data.shape[0].x, 400.0f);        // (4 sigma)^2
+  EXPECT_FLOAT_EQ(data.shape[0].y, 1.0f / 50.0f);  // 1 / (2 sigma^2)
+  EXPECT_FLOAT_EQ(data.shape[0].z, 4.0f / 25.0f);  // p / sigma^2
+  EXPECT_EQ(data.shape[1], glm::vec4(0.0f));       // unused slots reach nothing
+}
+
+TEST(InsertDeformGlsl, GoesRightAfterTheVersionLine) {
+  const std::string source = insert_deform_glsl("#version 450 core\nvoid main() {}\n");
+  EXPECT_THAT(source, testing::StartsWith("#version 450 core\n"));
+  EXPECT_LT(source.find("PalpateDeform"), source.find("void main"));
+  EXPECT_THAT(source, testing::HasSubstr("#define PALPATE_DENT_SLOTS 8\n"));
+  EXPECT_THAT(insert_deform_glsl("void main() {}", 2), testing::StartsWith("#define PALPATE_DENT_SLOTS 2\n"));
+}
+
+TEST(DeformBlock, AttachToAProgramWithoutTheBlockIsAClearError) {
+  test::gl_context();
+  const ShaderProgram program("no deformation here",
+                              "#version 450 core\nvoid main() { gl_Position = vec4(0.0); }\n", empty_fragment);
+  const DeformBlock block;
+  EXPECT_THAT([&] { block.attach(program.id()); },
+              testing::ThrowsMessage<Error>(testing::HasSubstr("no active uniform block PalpateDeform")));
+}
+
+}  // namespace
+}  // namespace palpate::gl

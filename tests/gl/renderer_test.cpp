@@ -1,0 +1,392 @@
+// The renderer on llvmpipe: its per-fragment normals against the true normals of the CPU-deformed
+// mesh, p = 0 against the undeformed image, which dents deform which object, and the host's GL state.
+#include "palpate/gl/renderer.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <glm/trigonometric.hpp>
+#include <vector>
+
+#include "gl_test_context.hpp"
+#include "palpate/core/shapes.hpp"
+#include "palpate/gl/framebuffer.hpp"
+#include "palpate/gl/deform_glsl.hpp"
+#include "palpate/gl/shader_program.hpp"
+
+namespace palpate::gl {
+namespace {
+
+constexpr int size = 512;
+
+Scene scene_of(Mesh mesh, float sigma_mm = 5.0f) {
+  Scene scene;
+  SceneObject object;
+  object.name = "test mesh";
+  object.mesh = std::move(mesh);
+  object.material.sigma_mm = sigma_mm;
+  scene.objects.push_back(std::move(object));
+  return scene;
+}
+
+struct Camera {
+  glm::mat4 view, projection;
+};
+
+Camera looking_at(glm::vec3 eye, glm::vec3 target) {
+  return {glm::lookAt(eye, target, glm::vec3(0, 0, 1)), glm::perspective(glm::radians(40.0f), 1.0f, 5.0f, 1000.0f)};
+}
+
+// Renders `scene` with `dents` into a fresh target and returns its pixels (RGBA, float or 8-bit).
+template <class Pixel>
+std::vector<Pixel> render(const Scene& scene, const Camera& camera, std::span<const ObjectDent> dents,
+                          DrawOptions options) {
+  const Framebuffer target({size, size, std::is_same_v<Pixel, float> ? ColorFormat::rgba32f : ColorFormat::rgba8});
+  target.bind();
+  glClearColor(0, 0, 0, 0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  Renderer renderer;
+  renderer.upload(scene);
+  renderer.draw(camera.view, camera.projection, dents, options);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+  if constexpr (std::is_same_v<Pixel, float>) {
+    return target.read_rgba_float();
+  } else {
+    return target.read_rgba8();
+  }
+}
+
+DrawOptions normals_options(Deformation deformation) {
+  DrawOptions options;
+  options.deformation = deformation;
+  options.shading = Shading::normals;
+  return options;
+}
+
+float angle_deg(glm::vec3 a, glm::vec3 b) {
+  return glm::degrees(std::atan2(glm::length(glm::cross(a, b)), glm::dot(a, b)));
+}
+
+struct AngleStats {
+  std::size_t pixels = 0;
+  float mean = 0.0f, p99 = 0.0f, max = 0.0f;
+};
+
+AngleStats stats(std::vector<float> angles) {
+  AngleStats s;
+  s.pixels = angles.size();
+  if (angles.empty()) return s;
+  std::sort(angles.begin(), angles.end());
+  for (float a : angles) s.mean += a / static_cast<float>(angles.size());
+  s.p99 = angles[angles.size() * 99 / 100];
+  s.max = angles.back();
+  return s;
+}
+
+// The per-fragment normals of the GPU path against the true ones: the CPU-deformed mesh (deform_mesh,
+// exact area-weighted normals of the deformed triangles) drawn undeformed, its vertex normals
+// interpolated. Over all covered pixels, and over those inside the dent alone (where the reference
+// leans more than 1 degree off the undeformed normal).
+void expect_true_normals(const Mesh& mesh, const Dent& dent, const Camera& camera) {
+  const Scene original = scene_of(mesh, dent.sigma_mm);
+  Mesh deformed;
+  deform_mesh(mesh, glm::mat4(1.0f), {&dent, 1}, deformed);
+  const Scene reference_scene = scene_of(deformed, dent.sigma_mm);
+  const ObjectDent dents[] = {{0, dent}};
+
+  const auto reference = render<float>(reference_scene, camera, {}, normals_options(Deformation::none));
+  const auto undeformed = render<float>(original, camera, {}, normals_options(Deformation::none));
+  const auto gpu = render<float>(original, camera, dents, normals_options(Deformation::gpu));
+  DrawOptions every_triangle = normals_options(Deformation::gpu);
+  every_triangle.skip_unreached = false;
+  EXPECT_EQ(gpu, render<float>(original, camera, dents, every_triangle))
+      << "drawing unreached triangles with the plain shader changed the image";
+
+  std::vector<float> all, in_dent;
+  float deepest_lean = 0.0f;
+  for (std::size_t i = 0; i < gpu.size(); i += 4) {
+    if (gpu[i + 3] != 1.0f || reference[i + 3] != 1.0f) continue;
+    const glm::vec3 g(gpu[i], gpu[i + 1], gpu[i + 2]), r(reference[i], reference[i + 1], reference[i + 2]);
+    const float error = angle_deg(g, r);
+    all.push_back(error);
+    if (undeformed[i + 3] == 1.0f) {
+      const float lean = angle_deg(r, glm::vec3(undeformed[i], undeformed[i + 1], undeformed[i + 2]));
+      deepest_lean = std::max(deepest_lean, lean);
+      if (lean > 1.0f) in_dent.push_back(error);
+    }
+  }
+  const AngleStats overall = stats(all), dent_only = stats(in_dent);
+  EXPECT_GT(overall.pixels, 20000u);
+  EXPECT_GT(dent_only.pixels, 2000u) << "the dent covers too few pixels to judge";
+  EXPECT_GT(deepest_lean, 15.0f) << "the dent hardly tilts the surface: the test could not fail";
+  EXPECT_LE(overall.mean, 2.0f);
+  EXPECT_LE(overall.p99, 5.0f);
+  EXPECT_LE(dent_only.mean, 2.0f);
+  EXPECT_LE(dent_only.p99, 5.0f);
+  std::printf("normal error, all %zu px: mean %.3f p99 %.3f max %.2f deg; in the dent %zu px: mean %.3f p99 %.3f "
+              "max %.2f deg (the dent leans up to %.1f deg)\n",
+              overall.pixels, overall.mean, overall.p99, overall.max, dent_only.pixels, dent_only.mean, dent_only.p99,
+              dent_only.max, deepest_lean);
+}
+
+TEST(RendererNormals, FinePlaneMatchesTheTrueNormals) {
+  test::gl_context();
+  const Mesh plane = make_grid(80.0f, 240);  // 0.33 mm cells
+  expect_true_normals(plane, Dent{{3.0f, 2.0f, 0.0f}, 3.0f, 5.0f}, looking_at({0.0f, -45.0f, 50.0f}, {0, 0, 0}));
+}
+
+TEST(RendererNormals, FineSphereMatchesTheTrueNormals) {
+  test::gl_context();
+  const Mesh sphere = make_sphere(40.0f, 80000);
+  const glm::vec3 contact = glm::normalize(glm::vec3(0.3f, -1.0f, 0.4f)) * 40.0f;
+  expect_true_normals(sphere, Dent{contact, 4.0f, 6.0f}, looking_at({20.0f, -130.0f, 60.0f}, {0, 0, 0}));
+}
+
+struct Bumpy : testing::Test {
+  Scene scene = scene_of(make_bumpy_sphere(40.0f, 2.5f, 40000), 6.0f);
+  Camera camera = looking_at({0.0f, -140.0f, 40.0f}, {0, 0, 0});
+  glm::vec3 contact = glm::normalize(glm::vec3(0.1f, -1.0f, 0.3f)) * 41.0f;
+
+  void SetUp() override {
+    test::gl_context();
+    scene.objects[0].mesh.colors.resize(scene.objects[0].mesh.vertex_count());
+    for (std::size_t i = 0; i < scene.objects[0].mesh.vertex_count(); ++i) {
+      scene.objects[0].mesh.colors[i] = glm::abs(glm::normalize(scene.objects[0].mesh.positions[i]));
+    }
+  }
+};
+
+TEST_F(Bumpy, ZeroDepthGivesTheUndeformedImageBitForBit) {
+  DrawOptions plain;
+  plain.deformation = Deformation::none;
+  const auto undeformed = render<std::uint8_t>(scene, camera, {}, plain);
+  const ObjectDent flat[] = {{0, {contact, 0.0f, 6.0f}}};
+  for (bool skip_unreached : {true, false}) {
+    DrawOptions options;
+    options.skip_unreached = skip_unreached;
+    EXPECT_EQ(render<std::uint8_t>(scene, camera, flat, options), undeformed) << "skip_unreached " << skip_unreached;
+  }
+  const ObjectDent dented[] = {{0, {contact, 4.0f, 6.0f}}};
+  EXPECT_NE(render<std::uint8_t>(scene, camera, dented, {}), undeformed);
+}
+
+// On a smooth sphere: over the bumps of the bumpy one the paper's rotated normal and the true normal
+// part more (the rotation ignores how the undeformed normal turns within the dent).
+TEST_F(Bumpy, CpuNaiveAndGpuDrawTheSameDentOnASmoothSphere) {
+  scene.objects[0].mesh = make_sphere(40.0f, 40000);
+  // The CPU-naive path recomputes every vertex normal from the triangles: start from those normals so
+  // that the two paths differ by how they treat the dent only.
+  compute_vertex_normals(scene.objects[0].mesh);
+  const ObjectDent dents[] = {{0, {contact, 4.0f, 6.0f}}};
+  DrawOptions naive, none;
+  naive.deformation = Deformation::cpu_naive;
+  none.deformation = Deformation::none;
+  const auto gpu = render<std::uint8_t>(scene, camera, dents, {});
+  const auto cpu = render<std::uint8_t>(scene, camera, dents, naive);
+  const auto flat = render<std::uint8_t>(scene, camera, {}, none);
+  // Pixels that differ by more than a few levels (rounding of normals summed in another order aside).
+  const auto differing = [](const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
+    std::size_t count = 0;
+    for (std::size_t i = 0; i < a.size(); i += 4) {
+      int largest = 0;
+      for (std::size_t c = 0; c < 3; ++c) largest = std::max(largest, std::abs(int(a[i + c]) - int(b[i + c])));
+      count += largest > 4;
+    }
+    return count;
+  };
+  const std::size_t dent_pixels = differing(gpu, flat), disagreeing = differing(gpu, cpu);
+  std::printf("the dent changes %zu pixels; the GPU and CPU-naive paths differ on %zu\n", dent_pixels, disagreeing);
+  EXPECT_GT(dent_pixels, 1000u);
+  EXPECT_LT(disagreeing, dent_pixels / 10);
+}
+
+TEST(RendererDents, AContactDentsOnlyTheObjectItTouchesWithThatObjectsSigma) {
+  test::gl_context();
+  Scene scene;
+  for (int i = 0; i < 2; ++i) {
+    SceneObject object;
+    object.name = i == 0 ? "left" : "right";
+    object.mesh = make_sphere(30.0f, 20000);
+    object.transform = glm::translate(glm::mat4(1.0f), glm::vec3(i == 0 ? -40.0f : 40.0f, 0.0f, 0.0f));
+    object.material.sigma_mm = i == 0 ? 3.0f : 8.0f;
+    scene.objects.push_back(object);
+  }
+  const Camera camera = looking_at({0.0f, -200.0f, 0.0f}, {0, 0, 0});
+  Contact contact;
+  contact.object = 1;
+  contact.point = {40.0f, -30.0f, 0.0f};
+  contact.hip = {40.0f, -26.0f, 0.0f};
+  contact.depth_mm = 4.0f;
+
+  const Framebuffer target({size, size});
+  Renderer renderer;
+  renderer.upload(scene);
+  DrawOptions options;
+  options.draw_probe = false;
+  const auto frame = [&](auto&& draw) {
+    target.bind();
+    glClearColor(0, 0, 0, 0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    draw();
+    return target.read_rgba8();
+  };
+  DrawResult result;
+  const auto by_contact = frame([&] { result = renderer.draw(camera.view, camera.projection, {&contact, 1}, options); });
+  EXPECT_EQ(result.deformed_objects, 1);
+  EXPECT_EQ(result.dropped_dents, 0);
+  const ObjectDent explicit_dent[] = {{1, {contact.point, 4.0f, 8.0f}}};
+  EXPECT_EQ(by_contact, frame([&] { renderer.draw(camera.view, camera.projection, explicit_dent, options); }));
+  const auto undeformed = frame([&] { renderer.draw(camera.view, camera.projection, std::span<const ObjectDent>(), options); });
+
+  // The left object (left half of the image) is untouched, the right one dented.
+  std::size_t left_changed = 0, right_changed = 0;
+  for (std::size_t i = 0; i < by_contact.size(); i += 4) {
+    const bool left = (i / 4) % size < size / 2;
+    const bool changed = !std::equal(by_contact.begin() + long(i), by_contact.begin() + long(i) + 4, undeformed.begin() + long(i));
+    (left ? left_changed : right_changed) += changed;
+  }
+  EXPECT_EQ(left_changed, 0u);
+  EXPECT_GT(right_changed, 500u);
+
+  // The same dent given to the left object explicitly changes the left half.
+  const ObjectDent left_dent[] = {{0, {{-40.0f, -30.0f, 0.0f}, 4.0f, 8.0f}}};
+  EXPECT_NE(undeformed, frame([&] { renderer.draw(camera.view, camera.projection, left_dent, options); }));
+}
+
+TEST(RendererDents, DentsPastTheLimitOrForNoObjectAreDroppedAndCounted) {
+  test::gl_context();
+  const Framebuffer target({64, 64});
+  target.bind();
+  Renderer renderer;
+  renderer.upload(scene_of(make_sphere(30.0f, 2000)));
+  std::vector<ObjectDent> dents(max_dents + 1, ObjectDent{0, {{0.0f, -30.0f, 0.0f}, 1.0f, 5.0f}});
+  dents.push_back({7, {}});
+  dents.push_back({-1, {}});
+  const Camera camera = looking_at({0.0f, -100.0f, 0.0f}, {0, 0, 0});
+  const DrawResult result = renderer.draw(camera.view, camera.projection, dents);
+  EXPECT_EQ(result.dropped_dents, 3);
+  EXPECT_EQ(result.deformed_objects, 1);
+  Contact nowhere;
+  nowhere.object = 3;
+  nowhere.depth_mm = 1.0f;
+  EXPECT_EQ(renderer.draw(camera.view, camera.projection, {&nowhere, 1}).dropped_dents, 1);
+}
+
+// Every piece of GL state a host might have set that the renderer could touch, read back.
+std::vector<GLint64> gl_state_snapshot() {
+  std::vector<GLint64> s;
+  const auto integer = [&](GLenum name, int count = 1) {
+    GLint64 values[4] = {};
+    glGetInteger64v(name, values);
+    s.insert(s.end(), values, values + count);
+  };
+  const auto indexed = [&](GLenum name, GLuint index) {
+    GLint64 value = 0;
+    glGetInteger64i_v(name, index, &value);
+    s.push_back(value);
+  };
+  for (GLenum name : {GL_CURRENT_PROGRAM, GL_VERTEX_ARRAY_BINDING, GL_ARRAY_BUFFER_BINDING, GL_ELEMENT_ARRAY_BUFFER_BINDING,
+                      GL_UNIFORM_BUFFER_BINDING, GL_DRAW_FRAMEBUFFER_BINDING, GL_READ_FRAMEBUFFER_BINDING,
+                      GL_ACTIVE_TEXTURE, GL_TEXTURE_BINDING_2D, GL_DEPTH_FUNC, GL_DEPTH_WRITEMASK, GL_CULL_FACE_MODE,
+                      GL_FRONT_FACE, GL_BLEND_SRC_RGB, GL_BLEND_DST_RGB, GL_BLEND_EQUATION_RGB, GL_PROGRAM_PIPELINE_BINDING,
+                      GL_TRANSFORM_FEEDBACK_BINDING, GL_RENDERBUFFER_BINDING, GL_PIXEL_PACK_BUFFER_BINDING}) {
+    integer(name);
+  }
+  integer(GL_VIEWPORT, 4);
+  integer(GL_SCISSOR_BOX, 4);
+  integer(GL_COLOR_WRITEMASK, 4);
+  integer(GL_POLYGON_MODE, 2);
+  for (GLuint binding = 0; binding < 8; ++binding) {
+    indexed(GL_UNIFORM_BUFFER_BINDING, binding);
+    indexed(GL_UNIFORM_BUFFER_START, binding);
+    indexed(GL_UNIFORM_BUFFER_SIZE, binding);
+  }
+  for (GLenum cap : {GL_DEPTH_TEST, GL_CULL_FACE, GL_BLEND, GL_SCISSOR_TEST, GL_STENCIL_TEST, GL_MULTISAMPLE,
+                     GL_PRIMITIVE_RESTART, GL_RASTERIZER_DISCARD, GL_POLYGON_OFFSET_FILL}) {
+    s.push_back(glIsEnabled(cap));
+  }
+  return s;
+}
+
+TEST(RendererState, LeavesTheHostsGlStateAsItFoundItAndIgnoresIt) {
+  test::gl_context();
+  const Scene scene = scene_of(make_bumpy_sphere(40.0f, 2.0f, 20000), 6.0f);
+  const Camera camera = looking_at({0.0f, -140.0f, 40.0f}, {0, 0, 0});
+  Contact contact;
+  contact.object = 0;
+  contact.point = glm::normalize(glm::vec3(0.1f, -1.0f, 0.3f)) * 40.0f;
+  contact.hip = contact.point * 0.95f;
+  contact.depth_mm = 3.0f;
+  const Framebuffer target({size, size});
+  Renderer renderer;
+  renderer.upload(scene);
+  DrawOptions options;
+  options.draw_contact_points = true;
+  const auto frame = [&] {
+    renderer.draw(camera.view, camera.projection, {&contact, 1}, options);
+    options.deformation = Deformation::cpu_naive;
+    renderer.draw(camera.view, camera.projection, {&contact, 1}, options);
+    options.deformation = Deformation::gpu;
+  };
+
+  target.bind();
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  frame();
+  const auto expected = target.read_rgba8();
+
+  // A host with its own program, arrays, buffers and unusual fixed-function state.
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const ShaderProgram host_program("host", "#version 450 core\nvoid main() { gl_Position = vec4(0.0); }\n",
+                                   "#version 450 core\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n");
+  GLuint vao = 0, buffers[3] = {}, texture = 0;
+  glGenVertexArrays(1, &vao);
+  glGenBuffers(3, buffers);
+  glGenTextures(1, &texture);
+  glUseProgram(host_program.id());
+  glBindVertexArray(vao);
+  glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
+  glBindBuffer(GL_UNIFORM_BUFFER, buffers[1]);
+  glBufferData(GL_UNIFORM_BUFFER, 1024, nullptr, GL_STATIC_DRAW);
+  glBindBufferRange(GL_UNIFORM_BUFFER, DeformBlock::default_binding, buffers[1], 256, 512);
+  glBindBuffer(GL_UNIFORM_BUFFER, buffers[2]);
+  glActiveTexture(GL_TEXTURE3);
+  glBindTexture(GL_TEXTURE_2D, texture);
+  glDisable(GL_DEPTH_TEST);
+  glDepthFunc(GL_GREATER);
+  glDepthMask(GL_FALSE);
+  glEnable(GL_CULL_FACE);
+  glCullFace(GL_FRONT);
+  glFrontFace(GL_CW);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
+  glScissor(3, 4, 50, 60);
+  const std::vector<GLint64> before = gl_state_snapshot();
+  frame();
+  EXPECT_EQ(gl_state_snapshot(), before);
+  EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR));
+
+  // The host's state does not leak into the renderer's drawing either.
+  glDisable(GL_BLEND);
+  EXPECT_EQ(target.read_rgba8(), expected);
+
+  glUseProgram(0);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glBindBuffer(GL_UNIFORM_BUFFER, 0);
+  glActiveTexture(GL_TEXTURE0);
+  glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glDepthMask(GL_TRUE);
+  glDepthFunc(GL_LESS);
+  glCullFace(GL_BACK);
+  glFrontFace(GL_CCW);
+  glDeleteTextures(1, &texture);
+  glDeleteBuffers(3, buffers);
+  glDeleteVertexArrays(1, &vao);
+}
+
+}  // namespace
+}  // namespace palpate::gl
