@@ -76,7 +76,7 @@ std::filesystem::path plot_run(const std::string& file, const std::vector<PhaseR
 int bench_table1(const Table1Options& options) {
   const Scene scene = options.scene_file.empty() ? default_scene() : load_scene(options.scene_file);
   GlSession session = open_gl(options.headless, options.width, options.height, "palpate bench table1");
-  gl::Framebuffer framebuffer({.width = options.width, .height = options.height, .color = gl::ColorFormat::rgba8, .samples = 4});
+  gl::Framebuffer framebuffer({.width = options.width, .height = options.height, .color = gl::ColorFormat::rgba8, .samples = 0});
   gl::Renderer renderer;
   const std::vector<Phase> phases = table1_phases(scene, options.seconds);
   std::vector<PhaseResult> gpu, naive;

@@ -89,21 +89,29 @@ struct KeySlot {
   }
 };
 
+KeySlot slot_for(int phase, int press, double at_time_s) {
+  KeySlot slot;
+  slot.phase = phase;
+  slot.press = press;
+  slot.at_time_s = at_time_s;
+  return slot;
+}
+
 std::vector<KeySlot> plan_key_frames(const std::vector<Phase>& phases) {
-  std::vector<KeySlot> slots = {KeySlot{0, 0, 0.0}};
+  std::vector<KeySlot> slots = {slot_for(0, 0, 0.0)};
   for (int p = 0; p < int(phases.size()); ++p) {
     const Phase& phase = phases[std::size_t(p)];
     const bool slide = p > 0 && phase.presses.size() == 1;
     const ProbeScript script = make_script(phase.presses);
     for (int press = 0; press < int(phase.presses.size()); ++press) {
       if (!slide) {
-        slots.push_back(KeySlot{p, press});
+        slots.push_back(slot_for(p, press, -1.0));
         continue;
       }
       const PressSlidePath path(phase.presses[std::size_t(press)]);
       const double from = script.press_start_s[std::size_t(press)] + path.approach_end_s();
       const double span = path.slide_end_s() - path.approach_end_s();
-      for (int k = 0; k < 4; ++k) slots.push_back(KeySlot{p, press, from + span * (0.1 + 0.8 * k / 3.0)});
+      for (int k = 0; k < 4; ++k) slots.push_back(slot_for(p, press, from + span * (0.1 + 0.8 * k / 3.0)));
     }
   }
   if (slots.size() > 9) slots.resize(9);
@@ -120,7 +128,7 @@ int run_demo(const DemoOptions& options) {
               scene.vertex_count(), gl_session.window ? "window" : "headless EGL", gl_session.renderer.c_str(),
               out.string().c_str());
 
-  gl::Framebuffer framebuffer({.width = options.width, .height = options.height, .color = gl::ColorFormat::rgba8, .samples = 4});
+  gl::Framebuffer framebuffer({.width = options.width, .height = options.height, .color = gl::ColorFormat::rgba8, .samples = 0});
   gl::Renderer renderer;
   FrameWriter writer(out, options.width, options.height, options.video_fps);
   std::vector<KeySlot> slots = plan_key_frames(phases);

@@ -49,18 +49,18 @@ int mesh_info(const std::vector<std::string>& files) {
 }  // namespace
 
 void add_mesh_command(CLI::App& app) {
-  CLI::App* mesh = app.add_subcommand("mesh", "Inspect, convert and generate meshes");
-  mesh->require_subcommand(1);
+  CLI::App* group = app.add_subcommand("mesh", "Inspect, convert and generate meshes");
+  group->require_subcommand(1);
 
   auto files = std::make_shared<std::vector<std::string>>();
-  CLI::App* info = mesh->add_subcommand("info", "Objects, vertices, triangles, bounds, topology and load time");
+  CLI::App* info = group->add_subcommand("info", "Objects, vertices, triangles, bounds, topology and load time");
   info->add_option("files", *files, "Model files (.wrl .wrl.gz .iv .obj .ply .stl .off .gltf .glb)")
       ->required()
       ->check(CLI::ExistingFile);
   on_selected(info, [files] { return mesh_info(*files); });
 
   auto in = std::make_shared<std::string>(), out = std::make_shared<std::string>();
-  CLI::App* convert = mesh->add_subcommand("convert", "Convert a model to VRML97 (.wrl) or PLY (.ply)");
+  CLI::App* convert = group->add_subcommand("convert", "Convert a model to VRML97 (.wrl) or PLY (.ply)");
   convert->add_option("input", *in, "Model file to read")->required()->check(CLI::ExistingFile);
   convert->add_option("output", *out, "File to write; the format follows the extension")->required();
   on_selected(convert, [in, out] {
@@ -77,7 +77,7 @@ void add_mesh_command(CLI::App& app) {
     std::string output;
   };
   auto opts = std::make_shared<PhantomOptions>();
-  CLI::App* phantom = mesh->add_subcommand("phantom", "Generate the brain or skin phantom (deterministic)");
+  CLI::App* phantom = group->add_subcommand("phantom", "Generate the brain or skin phantom (deterministic)");
   auto* brain_flag = phantom->add_flag("--brain", opts->brain, "Brain: gyri, deep sulci, longitudinal fissure");
   auto* skin_flag = phantom->add_flag("--skin", opts->skin, "Head-shaped skin that encloses the brain");
   brain_flag->excludes(skin_flag);

@@ -48,7 +48,7 @@ PressSlide skin_press() {
   PressSlide spec;
   spec.start_height_mm = 12.0f;
   spec.approach_speed_mm_per_s = 60.0f;
-  spec.press_depth_mm = 6.0f;
+  spec.press_depth_mm = 8.0f;
   spec.slide_length_mm = 8.0f;
   spec.slide_speed_mm_per_s = 16.0f;
   spec.depth_amplitude_mm = 2.0f;
@@ -63,7 +63,7 @@ PressSlide brain_slide(float length_mm, float speed_mm_per_s) {
   PressSlide spec;
   spec.start_height_mm = 10.0f;
   spec.approach_speed_mm_per_s = 50.0f;
-  spec.press_depth_mm = 3.0f;
+  spec.press_depth_mm = 4.0f;
   spec.slide_length_mm = length_mm;
   spec.slide_speed_mm_per_s = speed_mm_per_s;
   spec.depth_amplitude_mm = 1.0f;
@@ -114,8 +114,8 @@ std::vector<Phase> demo_phases(const Scene& scene) {
   const int outer = outer_object(scene);
   const std::vector<bool> all(scene.objects.size(), true);
 
-  Phase presses{model_name(scene, all), scene, demo_camera(world_bounds(scene)), {}};
-  for (const glm::vec2 where : {glm::vec2(0.45f, 0.32f), glm::vec2(0.62f, 0.45f), glm::vec2(0.38f, 0.5f)}) {
+  Phase presses{model_name(scene, all), scene, demo_camera(world_bounds(scene), 0.7f), {}};
+  for (const glm::vec2 where : {glm::vec2(0.45f, 0.25f), glm::vec2(0.6f, 0.4f), glm::vec2(0.36f, 0.42f)}) {
     presses.presses.push_back(aim_at_view(scene, outer, presses.camera, where, skin_press()));
   }
   phases.push_back(std::move(presses));
@@ -125,8 +125,8 @@ std::vector<Phase> demo_phases(const Scene& scene) {
     std::vector<bool> shown = all;
     shown[std::size_t(outer)] = false;
     Scene inside = with_shown(scene, shown);
-    Phase slide{model_name(scene, shown), inside, demo_camera(world_bounds(scene.objects[std::size_t(inner)]), 0.75f), {}};
-    slide.presses.push_back(aim_at_view(inside, inner, slide.camera, {0.4f, 0.4f}, brain_slide(50.0f, 20.0f)));
+    Phase slide{model_name(scene, shown), inside, demo_camera(world_bounds(scene.objects[std::size_t(inner)]), 0.55f), {}};
+    slide.presses.push_back(aim_at_view(inside, inner, slide.camera, {0.35f, 0.45f}, brain_slide(50.0f, 20.0f)));
     phases.push_back(std::move(slide));
   }
   return phases;

@@ -2,11 +2,12 @@
 // cursor in the view plane, its depth by Shift+wheel or W/S), the haptic loop runs on it at 1 kHz, and
 // the scene is drawn deformed, with the force as an arrow and a panel of materials, lights and live
 // rates. Written on Dear ImGui's GLFW and OpenGL3 backends.
-#include <GLFW/glfw3.h>
 #include <epoxy/gl.h>
+// GLFW after epoxy: it must not pull in GL/gl.h first.
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_opengl3.h>
 #include <imgui.h>
-#include <imgui_impl_glfw.h>
-#include <imgui_impl_opengl3.h>
 
 #include <algorithm>
 #include <cstdio>
@@ -253,9 +254,9 @@ int run_view(const ViewOptions& options) {
       const float step = 40.0f * io.DeltaTime;  // mm per frame at 40 mm/s
       if (glfwGetKey(native, GLFW_KEY_W) == GLFW_PRESS) tip += facing * step;
       if (glfwGetKey(native, GLFW_KEY_S) == GLFW_PRESS) tip -= facing * step;
-      reset_tip = ImGui::IsKeyPressed(ImGuiKey_R);
-      screenshot = ImGui::IsKeyPressed(ImGuiKey_P);
-      if (ImGui::IsKeyPressed(ImGuiKey_Escape)) window.request_close();
+      reset_tip = ImGui::IsKeyPressed(GLFW_KEY_R);  // ImGui 1.86 indexes keys by GLFW code
+      screenshot = ImGui::IsKeyPressed(GLFW_KEY_P);
+      if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) window.request_close();
     }
     device.set_target(tip);
 
