@@ -1,7 +1,6 @@
 #include "palpate/gl/png.hpp"
 
-#define STB_IMAGE_WRITE_IMPLEMENTATION
-#include <stb/stb_image_write.h>
+#include <stb/stb_image_write.h>  // implemented in Debian's libstb
 
 #include <string>
 

@@ -1,5 +1,7 @@
 #include "test_paths.hpp"
 
+#include <gtest/gtest.h>
+
 #include <cstdlib>
 #include <string>
 
@@ -22,7 +24,15 @@ std::optional<std::filesystem::path> shared_data_dir() {
 }
 
 std::filesystem::path scratch_dir(const std::string& name) {
-  auto dir = binary_dir() / "test-scratch" / name;
+  // Under the running test's own folder: ctest runs tests in parallel processes, and a folder shared by
+  // two tests would be emptied under one by the other.
+  auto dir = binary_dir() / "test-scratch";
+  if (const ::testing::TestInfo* test = ::testing::UnitTest::GetInstance()->current_test_info()) {
+    dir /= std::string(test->test_suite_name()) + "." + test->name();
+  } else if (const ::testing::TestSuite* suite = ::testing::UnitTest::GetInstance()->current_test_suite()) {
+    dir /= suite->name();
+  }
+  dir /= name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

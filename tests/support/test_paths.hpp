@@ -9,7 +9,7 @@ std::filesystem::path source_dir();
 std::filesystem::path binary_dir();
 // ../shared/data beside the checkout (or $PALPATE_SHARED_DATA); empty when absent, so tests can skip.
 std::optional<std::filesystem::path> shared_data_dir();
-// A fresh, empty folder for one test's output files.
+// A fresh, empty folder for the running test's output files (unique to that test).
 std::filesystem::path scratch_dir(const std::string& name);
 
 }  // namespace palpate::test

@@ -1,0 +1,135 @@
+// `palpate demo` as `make demo` runs it, shortened: its files, its report, and frames that show the dent
+// where the contact is (compared with the same view rendered undeformed by the library).
+#include <gtest/gtest.h>
+#include <stb/stb_image.h>
+
+#include <cmath>
+#include <fstream>
+#include <glm/gtc/type_ptr.hpp>
+#include <nlohmann/json.hpp>
+
+#include "palpate/core/scene_file.hpp"
+#include "palpate/gl/framebuffer.hpp"
+#include "palpate/gl/headless_context.hpp"
+#include "palpate/gl/renderer.hpp"
+#include "run_command.hpp"
+#include "test_paths.hpp"
+
+namespace palpate {
+namespace {
+
+const std::string cli = PALPATE_CLI;
+
+glm::mat4 matrix(const nlohmann::json& values) {
+  std::vector<float> v = values.get<std::vector<float>>();
+  return glm::make_mat4(v.data());
+}
+
+glm::vec3 vec(const nlohmann::json& values) { return {values[0].get<float>(), values[1].get<float>(), values[2].get<float>()}; }
+
+// Pixel position (x right, y up from the bottom row) of a world point.
+glm::vec2 project(const glm::mat4& view_projection, glm::vec3 p, int width, int height) {
+  const glm::vec4 clip = view_projection * glm::vec4(p, 1.0f);
+  const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+  return {(ndc.x * 0.5f + 0.5f) * float(width), (ndc.y * 0.5f + 0.5f) * float(height)};
+}
+
+class DemoRun : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    out_ = test::scratch_dir("demo_run");
+    result_ = test::run_command(cli + " demo --headless --frames 30 --width 480 --height 384 --out " + out_.string());
+  }
+  static inline std::filesystem::path out_;
+  static inline test::CommandResult result_;
+};
+
+TEST_F(DemoRun, WritesItsFilesAndATableOneReport) {
+  ASSERT_EQ(result_.exit_status, 0) << result_.output;
+  EXPECT_NE(result_.output.find("TABLE I"), std::string::npos) << result_.output;
+  EXPECT_TRUE(std::filesystem::is_regular_file(out_ / "contact_sheet.png"));
+  const bool video = std::filesystem::is_regular_file(out_ / "demo.mp4");
+  if (!video) {
+    ASSERT_TRUE(std::filesystem::is_directory(out_ / "frames"));
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(out_ / "frames"), std::filesystem::directory_iterator()), 30);
+  }
+  std::ifstream file(out_ / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(file);
+  EXPECT_FALSE(report["device"].get<std::string>().empty());
+  ASSERT_GE(report["rows"].size(), 1u);
+  for (const auto& row : report["rows"]) {
+    EXPECT_FALSE(row["model"].get<std::string>().empty());
+    EXPECT_GT(row["vertices"].get<int>(), 0);
+    EXPECT_GT(row["faces"].get<int>(), 0);
+    EXPECT_GT(row["graphics_fps"].get<double>(), 0.0);
+    EXPECT_GT(row["haptics_hz"].get<double>(), 0.0);
+    EXPECT_GE(row["contact_age_ms"]["p99"].get<double>(), row["contact_age_ms"]["p50"].get<double>());
+  }
+  EXPECT_EQ(report["rows"][0]["vertices"].get<int>(), 159063);
+  EXPECT_EQ(report["frames"]["count"].get<int>(), 30);
+}
+
+TEST_F(DemoRun, FramesShowTheDentAroundTheContactAndNowhereElse) {
+  ASSERT_EQ(result_.exit_status, 0) << result_.output;
+  std::ifstream file(out_ / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(file);
+  // The deepest key frame.
+  const nlohmann::json* deepest = nullptr;
+  for (const auto& key : report["key_frames"]) {
+    if (key["contact"]["object"].get<int>() >= 0 &&
+        (!deepest || key["contact"]["depth_mm"].get<float>() > (*deepest)["contact"]["depth_mm"].get<float>())) {
+      deepest = &key;
+    }
+  }
+  ASSERT_NE(deepest, nullptr) << "no key frame in contact";
+  const nlohmann::json& key = *deepest;
+  ASSERT_GT(key["contact"]["depth_mm"].get<float>(), 1.0f);
+
+  int width = 0, height = 0, channels = 0;
+  stbi_uc* pixels = stbi_load((out_ / key["file"].get<std::string>()).c_str(), &width, &height, &channels, 4);
+  ASSERT_NE(pixels, nullptr);
+  std::vector<std::uint8_t> frame(pixels, pixels + std::size_t(width) * std::size_t(height) * 4);
+  stbi_image_free(pixels);
+
+  // The same view, undeformed, rendered by the library.
+  gl::HeadlessContext context;
+  Scene scene = default_scene();
+  for (std::size_t i = 0; i < scene.objects.size(); ++i) scene.objects[i].material.visible = key["visible"][i].get<bool>();
+  gl::Renderer renderer;
+  renderer.upload(scene);
+  gl::Framebuffer target({.width = width, .height = height});
+  target.bind();
+  glClearColor(0.08f, 0.09f, 0.11f, 1.0f);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  const glm::mat4 view = matrix(key["view"]), projection = matrix(key["projection"]);
+  renderer.draw(view, projection, std::span<const Contact>(), {});
+  std::vector<std::uint8_t> plain = target.read_rgba8();
+  // PNG rows run top first; the framebuffer's bottom first.
+  const auto frame_pixel = [&](int x, int y) { return &frame[(std::size_t(height - 1 - y) * std::size_t(width) + std::size_t(x)) * 4]; };
+
+  const glm::vec3 contact = vec(key["contact"]["point"]);
+  const int object = key["contact"]["object"].get<int>();
+  const float reach_mm = 4.0f * scene.objects[std::size_t(object)].material.sigma_mm;
+  const glm::vec2 centre = project(projection * view, contact, width, height);
+  // The dent's reach on screen: the largest projection of a 4 sigma offset in any direction.
+  float reach_px = 0.0f;
+  for (const glm::vec3 axis : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)}) {
+    reach_px = std::max(reach_px, glm::distance(project(projection * view, contact + axis * reach_mm, width, height), centre));
+  }
+  int near_changed = 0, far_changed = 0;
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const std::uint8_t* a = frame_pixel(x, y);
+      const std::uint8_t* b = &plain[(std::size_t(y) * std::size_t(width) + std::size_t(x)) * 4];
+      const int difference = std::abs(a[0] - b[0]) + std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]);
+      if (difference <= 12) continue;
+      const float distance = glm::distance(glm::vec2(x, y), centre);
+      (distance <= reach_px * 1.1f + 3.0f ? near_changed : far_changed) += 1;
+    }
+  }
+  EXPECT_GT(near_changed, 50) << "the frame does not differ from the undeformed view around the contact";
+  EXPECT_EQ(far_changed, 0) << "the frame differs from the undeformed view far from the contact";
+}
+
+}  // namespace
+}  // namespace palpate
