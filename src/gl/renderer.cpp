@@ -23,7 +23,7 @@
 namespace palpate::gl {
 namespace {
 
-constexpr std::size_t triangles_per_cluster = 128;
+constexpr std::size_t triangles_per_cluster = 64;
 constexpr GLuint attribute_position = 0, attribute_normal = 1, attribute_color = 2;
 
 // One linked program and where its uniforms are.

@@ -9,6 +9,13 @@
 // object's Material::sigma_mm, as in the paper; or the caller passes ObjectDents, a dent per object,
 // explicitly. At most max_dents apply to one object; the rest are dropped and counted.
 //
+// The deforming shaders are those of deform_glsl.hpp (world space in both stages), compiled for 1, 2, 4
+// or 8 dents; the triangles beyond every dent's 4-sigma reach are drawn by the plain shader, which gives
+// the same pixels (the plain and deforming shaders differ only by the deformation). The GL state it
+// sets for itself: depth test LESS with writes, back faces culled (counter-clockwise front), no blending,
+// filled polygons; state changed: program, vertex array, GL_ARRAY_BUFFER, GL_UNIFORM_BUFFER and its
+// binding DeformBlock::default_binding, those switches (all restored).
+//
 // Needs a current OpenGL 4.5 core context for all of its life (construction compiles its programs and
 // throws palpate::Error with the driver's log if one fails). Not thread-safe: use it on the thread of
 // its context.
@@ -39,12 +46,12 @@ enum class Shading {
 struct Lighting {
   glm::vec3 direction{-0.6f, 0.55f, 0.55f};  // toward the directional light: upper left, so dents shade
   glm::vec3 color{0.62f, 0.6f, 0.57f};
-  glm::vec3 spot_position{0.0f, 60.0f, 0.0f};  // mm: a head lamp just above the eye
-  glm::vec3 spot_direction{0.0f, -0.2f, -1.0f};  // along the beam
-  float spot_inner_deg = 8.0f;  // full intensity inside, fading to zero at the outer angle
-  float spot_outer_deg = 20.0f;
+  glm::vec3 spot_position{0.0f, 80.0f, 0.0f};  // mm: a head lamp above the eye,
+  glm::vec3 spot_direction{0.0f, -0.3f, -0.95f};  // along the beam: toward the middle of the view at 250 mm
+  float spot_inner_deg = 10.0f;  // full intensity inside, fading to zero at the outer angle
+  float spot_outer_deg = 28.0f;
   glm::vec3 spot_color{0.4f, 0.39f, 0.36f};
-  glm::vec3 ambient{0.1f, 0.1f, 0.11f};
+  glm::vec3 ambient{0.12f, 0.12f, 0.13f};
   float specular = 0.3f;
 };
 
