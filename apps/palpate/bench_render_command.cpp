@@ -16,7 +16,6 @@
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
-#include <malloc.h>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <optional>
@@ -24,7 +23,9 @@
 #include <vector>
 
 #include "commands.hpp"
+#include "format.hpp"
 #include "palpate/core/error.hpp"
+#include "palpate/core/scene_file.hpp"
 #include "palpate/core/shapes.hpp"
 #include "palpate/gl/framebuffer.hpp"
 #include "palpate/gl/headless_context.hpp"
@@ -65,11 +66,14 @@ SceneObject object(std::string name, Mesh mesh, float sigma_mm, glm::vec3 color)
   return o;
 }
 
-// Stand-ins of the paper's Table I models with their vertex counts (a closed mesh of V vertices has
-// 2V - 4 triangles): a bumpy sphere for the brain (sigma 5 mm) and a smoother, larger one around it
-// for the skin (sigma 12 mm). Drawn skin first, as it hides the brain.
-SceneObject skin() { return object("skin", make_bumpy_sphere(95.0f, 1.5f, 2 * 90207 - 4), 12.0f, {0.86f, 0.7f, 0.6f}); }
-SceneObject brain() { return object("brain", make_bumpy_sphere(70.0f, 3.0f, 2 * 68856 - 4), 5.0f, {0.85f, 0.62f, 0.62f}); }
+// The paper's Table I models: the default scene's phantoms with their materials. Drawn skin first, as
+// it hides the brain.
+SceneObject phantom(const std::string& name) {
+  for (SceneObject& o : default_scene().objects) {
+    if (o.name == name) return std::move(o);
+  }
+  throw Error("bench render: the default scene has no '" + name + "'");
+}
 
 struct BenchMesh {
   std::string name;
@@ -78,9 +82,9 @@ struct BenchMesh {
 
 std::vector<BenchMesh> bench_meshes(bool quick) {
   std::vector<BenchMesh> meshes{
-      {"brain", [] { return Scene{{brain()}}; }},
-      {"skin", [] { return Scene{{skin()}}; }},
-      {"both", [] { return Scene{{skin(), brain()}}; }},
+      {"brain", [] { return Scene{{phantom("brain")}}; }},
+      {"skin", [] { return Scene{{phantom("skin")}}; }},
+      {"both", [] { return Scene{{phantom("skin"), phantom("brain")}}; }},
   };
   if (!quick) {
     meshes.push_back({"1M", [] { return Scene{{object("sphere 1M", make_sphere(100.0f, 1'000'000), 8.0f, {0.8f, 0.7f, 0.65f})}}; }});
@@ -158,22 +162,10 @@ struct Row {
   int frames = 0;
 };
 
-std::string with_thousands(std::size_t n) {
-  std::string digits = std::to_string(n), out;
-  for (std::size_t i = 0; i < digits.size(); ++i) {
-    if (i > 0 && (digits.size() - i) % 3 == 0) out += ',';
-    out += digits[i];
-  }
-  return out;
-}
 
 int bench_render(const BenchOptions& options) {
   const double seconds = options.seconds > 0.0 ? options.seconds : (options.quick ? 2.0 : 3.0);
   constexpr int rounds = 6;
-  // Mesa's llvmpipe frees its binned scene (tens of MB in 64 KB blocks) after every frame; with glibc's
-  // default trim threshold the heap then shrinks and grows back each frame, page faults and zeroing
-  // taking a quarter of the frame. Keeping the freed memory serves every variant alike.
-  mallopt(M_TRIM_THRESHOLD, 1 << 30);
   gl::HeadlessContext context;
   const std::string device = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   const bool timed = timer_queries_trustworthy(device);

@@ -1,6 +1,7 @@
 // palpate: the command-line front end. Each subcommand lives in its own file and is built only from
 // the library's public API.
 #include <CLI/CLI.hpp>
+#include <malloc.h>
 #include <cstdio>
 #include <exception>
 
@@ -8,6 +9,10 @@
 #include "palpate/core/error.hpp"
 
 int main(int argc, char** argv) {
+  // Mesa's llvmpipe frees its binned scene (tens of MB in 64 KB blocks) after every frame; with glibc's
+  // default trim threshold the heap then shrinks and grows back each frame, page faults and zeroing
+  // taking a quarter of the frame. Keeping freed memory in the process costs nothing on a GPU driver.
+  mallopt(M_TRIM_THRESHOLD, 1 << 30);
   CLI::App app{"palpate: GPU visual deformation for point-based haptic applications"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "palpate 0.1.0");
