@@ -100,18 +100,15 @@ KeySlot slot_for(int phase, int press, double at_time_s) {
 std::vector<KeySlot> plan_key_frames(const std::vector<Phase>& phases) {
   std::vector<KeySlot> slots = {slot_for(0, 0, 0.0)};
   for (int p = 0; p < int(phases.size()); ++p) {
-    const Phase& phase = phases[std::size_t(p)];
-    const bool slide = p > 0 && phase.presses.size() == 1;
-    const ProbeScript script = make_script(phase.presses);
-    for (int press = 0; press < int(phase.presses.size()); ++press) {
-      if (!slide) {
-        slots.push_back(slot_for(p, press, -1.0));
+    const std::vector<ProbeScript::Stroke>& strokes = phases[std::size_t(p)].script.strokes;
+    for (int stroke = 0; stroke < int(strokes.size()); ++stroke) {
+      const ProbeScript::Stroke& s = strokes[std::size_t(stroke)];
+      if (!s.slide) {
+        slots.push_back(slot_for(p, stroke, -1.0));
         continue;
       }
-      const PressSlidePath path(phase.presses[std::size_t(press)]);
-      const double from = script.press_start_s[std::size_t(press)] + path.approach_end_s();
-      const double span = path.slide_end_s() - path.approach_end_s();
-      for (int k = 0; k < 4; ++k) slots.push_back(slot_for(p, press, from + span * (0.1 + 0.8 * k / 3.0)));
+      const double span = s.end_s - s.start_s;
+      for (int k = 0; k < 4; ++k) slots.push_back(slot_for(p, stroke, s.start_s + span * (0.2 + 0.6 * k / 3.0)));
     }
   }
   if (slots.size() > 9) slots.resize(9);
@@ -137,7 +134,8 @@ int run_demo(const DemoOptions& options) {
 
   for (int p = 0; p < int(phases.size()); ++p) {
     const Phase& phase = phases[std::size_t(p)];
-    const std::vector<double> press_starts = make_script(phase.presses).press_start_s;
+    std::vector<double> press_starts;
+    for (const ProbeScript::Stroke& stroke : phase.script.strokes) press_starts.push_back(stroke.start_s);
     RunOptions run;
     run.capture_fps = options.video_fps;
     run.max_captures = options.frames;

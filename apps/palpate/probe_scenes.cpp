@@ -58,17 +58,13 @@ PressSlide skin_press() {
   return spec;
 }
 
-// A long slide across the brain's gyri and sulci.
-PressSlide brain_slide(float length_mm, float speed_mm_per_s) {
-  PressSlide spec;
-  spec.start_height_mm = 10.0f;
-  spec.approach_speed_mm_per_s = 50.0f;
-  spec.press_depth_mm = 4.0f;
-  spec.slide_length_mm = length_mm;
-  spec.slide_speed_mm_per_s = speed_mm_per_s;
-  spec.depth_amplitude_mm = 1.0f;
-  spec.depth_cycles = 2.0f;
-  spec.retract_speed_mm_per_s = 50.0f;
+// A long slide across the brain's gyri and sulci, following the surface.
+SurfaceSlide brain_slide(float length_mm, float speed_mm_per_s) {
+  SurfaceSlide spec;
+  spec.depth_mm = 6.0f;
+  spec.depth_amplitude_mm = 1.5f;
+  spec.length_mm = length_mm;
+  spec.speed_mm_per_s = speed_mm_per_s;
   return spec;
 }
 
@@ -115,9 +111,11 @@ std::vector<Phase> demo_phases(const Scene& scene) {
   const std::vector<bool> all(scene.objects.size(), true);
 
   Phase presses{model_name(scene, all), scene, demo_camera(world_bounds(scene), 0.7f), {}};
+  std::vector<PressSlide> sites;
   for (const glm::vec2 where : {glm::vec2(0.45f, 0.25f), glm::vec2(0.6f, 0.4f), glm::vec2(0.36f, 0.42f)}) {
-    presses.presses.push_back(aim_at_view(scene, outer, presses.camera, where, skin_press()));
+    sites.push_back(aim_at_view(scene, outer, presses.camera, where, skin_press()));
   }
+  presses.script = press_script(sites);
   phases.push_back(std::move(presses));
 
   const int inner = largest_shown_inner(scene, outer);
@@ -125,8 +123,11 @@ std::vector<Phase> demo_phases(const Scene& scene) {
     std::vector<bool> shown = all;
     shown[std::size_t(outer)] = false;
     Scene inside = with_shown(scene, shown);
-    Phase slide{model_name(scene, shown), inside, demo_camera(world_bounds(scene.objects[std::size_t(inner)]), 0.55f), {}};
-    slide.presses.push_back(aim_at_view(inside, inner, slide.camera, {0.35f, 0.45f}, brain_slide(50.0f, 20.0f)));
+    Phase slide{model_name(scene, shown), inside, demo_camera(world_bounds(scene.objects[std::size_t(inner)]), 0.45f), {}};
+    // Along the smooth gyrus beside the fissure, then across the sulci at its end.
+    SurfaceSlide spec = brain_slide(50.0f, 20.0f);
+    spec.screen_direction = {0.35f, -1.0f};
+    slide.script = surface_slide_script(inside, inner, slide.camera, {0.6f, 0.2f}, spec);
     phases.push_back(std::move(slide));
   }
   return phases;
@@ -150,9 +151,8 @@ std::vector<Phase> table1_phases(const Scene& scene, double seconds) {
     const int touched = shown[std::size_t(outer)] ? outer : inner;
     Phase phase{model_name(scene, shown), visible, demo_camera(shown_bounds(visible)), {}};
     // Slow enough that the probe stays in contact for the whole measured stretch.
-    PressSlide spec = brain_slide(60.0f, float(60.0 / std::max(1.0, seconds)));
-    spec.rest_s = 0.0f;
-    phase.presses.push_back(aim_at_view(visible, touched, phase.camera, {0.45f, 0.4f}, spec));
+    phase.script = surface_slide_script(visible, touched, phase.camera, {0.45f, 0.4f},
+                                        brain_slide(60.0f, float(60.0 / std::max(1.0, seconds))));
     phases.push_back(std::move(phase));
   }
   return phases;

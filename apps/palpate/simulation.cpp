@@ -5,6 +5,8 @@
 #include <algorithm>
 #include <chrono>
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
+#include <numbers>
 
 #include "palpate/core/bvh.hpp"
 #include "palpate/core/error.hpp"
@@ -31,10 +33,10 @@ void move_to(std::vector<PathSample>& samples, glm::vec3 to, float speed_mm_per_
 
 }  // namespace
 
-ProbeScript make_script(const std::vector<PressSlide>& presses, float clearance_mm) {
+ProbeScript press_script(const std::vector<PressSlide>& presses, float clearance_mm) {
   if (presses.empty()) throw Error("probe script: no presses");
   std::vector<PathSample> samples;
-  std::vector<double> press_start_s;
+  std::vector<ProbeScript::Stroke> strokes;
   glm::vec3 previous_normal{0.0f};
   for (const PressSlide& spec : presses) {
     const PressSlidePath path(spec);
@@ -50,7 +52,7 @@ ProbeScript make_script(const std::vector<PressSlide>& presses, float clearance_
       samples.push_back({0.0, start});
     }
     const double offset = samples.back().time_s;
-    press_start_s.push_back(offset);
+    strokes.push_back({offset, offset + path.duration_s(), false});
     const int steps = int(std::ceil(path.duration_s() / 1e-3));
     for (int i = 1; i <= steps; ++i) {
       const double t = std::min(path.duration_s(), i * 1e-3);
@@ -58,22 +60,94 @@ ProbeScript make_script(const std::vector<PressSlide>& presses, float clearance_
     }
     previous_normal = path.normal_at(spec.slide_length_mm);
   }
-  return ProbeScript{SampledPath(std::move(samples)), std::move(press_start_s)};
+  return ProbeScript{SampledPath(std::move(samples)), std::move(strokes)};
+}
+
+namespace {
+
+// The first front-facing hit of a segment on one object of the scene, or no hit.
+class ObjectCaster {
+ public:
+  ObjectCaster(const Scene& scene, int object_index) : bvh_(Bvh::build(only(scene, object_index))) {}
+  BvhHit cast(glm::vec3 from, glm::vec3 to) const { return bvh_.first_hit(glm::dvec3(from), glm::dvec3(to)); }
+
+ private:
+  static Scene only(const Scene& scene, int object_index) {
+    Scene out = scene;
+    for (std::size_t i = 0; i < out.objects.size(); ++i) out.objects[i].material.touchable = int(i) == object_index;
+    return out;
+  }
+  Bvh bvh_;
+};
+
+OrbitCamera::Ray view_ray(const OrbitCamera& camera, glm::vec2 where) {
+  const glm::vec2 viewport{1000.0f, 1000.0f * 0.8f};
+  return camera.ray_through(where * viewport, viewport);
+}
+
+glm::vec3 camera_right(const OrbitCamera& camera) {
+  const glm::mat4 view = camera.view();
+  return {view[0][0], view[1][0], view[2][0]};
+}
+
+glm::vec3 camera_up(const OrbitCamera& camera) {
+  const glm::mat4 view = camera.view();
+  return {view[0][1], view[1][1], view[2][1]};
+}
+
+std::string missed(const Scene& scene, int object_index, glm::vec2 where) {
+  return "probe script: the view ray through (" + std::to_string(where.x) + ", " + std::to_string(where.y) +
+         ") misses object '" + scene.objects[std::size_t(object_index)].name + "'";
+}
+
+}  // namespace
+
+ProbeScript surface_slide_script(const Scene& scene, int object_index, const OrbitCamera& camera, glm::vec2 where,
+                                 const SurfaceSlide& spec) {
+  const ObjectCaster caster(scene, object_index);
+  const OrbitCamera::Ray ray = view_ray(camera, where);
+  const BvhHit start = caster.cast(ray.origin, ray.origin + ray.direction * camera.distance_mm * 4.0f);
+  if (!start.hit()) throw Error(missed(scene, object_index, where));
+  const glm::vec3 centre = world_bounds(scene.objects[std::size_t(object_index)]).center();
+  const glm::vec3 radial0 = glm::normalize(start.point - centre);
+  const glm::vec3 heading = camera_right(camera) * spec.screen_direction.x + camera_up(camera) * spec.screen_direction.y;
+  const glm::vec3 axis = glm::normalize(glm::cross(radial0, heading));
+  const float radius = glm::distance(start.point, centre);
+  const float reach = 2.0f * radius;
+
+  // The tip below the surface met from outside along the radial direction, `s` mm along the arc.
+  glm::vec3 last_tip = start.point - radial0 * spec.depth_mm;
+  const auto tip_at = [&](float s_mm, float depth_mm) {
+    const glm::vec3 radial = glm::vec3(glm::rotate(glm::mat4(1.0f), s_mm / radius, axis) * glm::vec4(radial0, 0.0f));
+    const BvhHit hit = caster.cast(centre + radial * (radius + reach), centre);
+    if (hit.hit()) last_tip = hit.point - radial * depth_mm;
+    return last_tip;
+  };
+  const glm::vec3 outside = start.point + radial0 * spec.start_height_mm;
+  std::vector<PathSample> samples{{0.0, outside}};
+  const auto add = [&](double dt, glm::vec3 p) { samples.push_back({samples.back().time_s + dt, p}); };
+  const int approach = std::max(1, int(spec.approach_s * 1000.0f));
+  const glm::vec3 first = tip_at(0.0f, spec.depth_mm);
+  for (int i = 1; i <= approach; ++i) add(1e-3, glm::mix(outside, first, float(i) / float(approach)));
+  const int slide = std::max(1, int(spec.length_mm / spec.speed_mm_per_s * 1000.0f));
+  for (int i = 1; i <= slide; ++i) {
+    const float s = spec.length_mm * float(i) / float(slide);
+    add(1e-3, tip_at(s, spec.depth_mm + spec.depth_amplitude_mm * std::sin(4.0f * std::numbers::pi_v<float> * s / spec.length_mm)));
+  }
+  const glm::vec3 last = samples.back().position_mm;
+  const glm::vec3 away = last + glm::normalize(last - centre) * (spec.start_height_mm + spec.depth_mm);
+  const int retract = std::max(1, int(spec.retract_s * 1000.0f));
+  for (int i = 1; i <= retract; ++i) add(1e-3, glm::mix(last, away, float(i) / float(retract)));
+  const double end = samples.back().time_s;
+  return ProbeScript{SampledPath(std::move(samples)), {{0.0, end, true}}};
 }
 
 PressSlide aim_at_view(const Scene& scene, int object_index, const OrbitCamera& camera, glm::vec2 where,
                        const PressSlide& spec) {
-  Scene only = scene;
-  for (std::size_t i = 0; i < only.objects.size(); ++i) only.objects[i].material.touchable = int(i) == object_index;
-  const Bvh bvh = Bvh::build(only);
-  const glm::vec2 viewport{1000.0f, 1000.0f * 0.8f};
-  const OrbitCamera::Ray ray = camera.ray_through(where * viewport, viewport);
-  const BvhHit hit = bvh.first_hit(glm::dvec3(ray.origin), glm::dvec3(ray.origin + ray.direction * camera.distance_mm * 4.0f));
+  const OrbitCamera::Ray ray = view_ray(camera, where);
+  const BvhHit hit = ObjectCaster(scene, object_index).cast(ray.origin, ray.origin + ray.direction * camera.distance_mm * 4.0f);
   const SceneObject& object = scene.objects[std::size_t(object_index)];
-  if (!hit.hit()) {
-    throw Error("probe script: the view ray through (" + std::to_string(where.x) + ", " + std::to_string(where.y) +
-                ") misses object '" + object.name + "'");
-  }
+  if (!hit.hit()) throw Error(missed(scene, object_index, where));
   // The hit triangle's vertex nearest the hit, in the object's frame.
   const glm::mat4 to_object = glm::inverse(object.transform);
   const glm::vec3 local = glm::vec3(to_object * glm::vec4(hit.point, 1.0f));
@@ -82,9 +156,7 @@ PressSlide aim_at_view(const Scene& scene, int object_index, const OrbitCamera& 
     const std::size_t v = object.mesh.indices[std::size_t(hit.triangle) * 3 + std::size_t(k)];
     if (glm::distance(object.mesh.positions[v], local) < glm::distance(object.mesh.positions[nearest], local)) nearest = v;
   }
-  const glm::mat4 view = camera.view();
-  const glm::vec3 camera_right{view[0][0], view[1][0], view[2][0]};
-  return aim_press_slide(object, nearest, camera_right, spec);
+  return aim_press_slide(object, nearest, camera_right(camera), spec);
 }
 
 PhaseResult run_phase(const Phase& phase, gl::Renderer& renderer, const gl::Framebuffer& framebuffer,
@@ -97,7 +169,7 @@ PhaseResult run_phase(const Phase& phase, gl::Renderer& renderer, const gl::Fram
     result.faces += object.mesh.triangle_count();
   }
   const Bvh bvh = Bvh::build(phase.scene);
-  ScriptedDevice device(make_script(phase.presses).path);
+  ScriptedDevice device(phase.script.path);
   HapticLoopParams params;
   params.rate_hz = options.haptic_rate_hz;
   HapticLoop loop(device, phase.scene, bvh, params);
@@ -107,7 +179,7 @@ PhaseResult run_phase(const Phase& phase, gl::Renderer& renderer, const gl::Fram
   const glm::mat4 view = phase.camera.view(), projection = phase.camera.projection(aspect);
   const double end_s = options.max_seconds > 0.0
                            ? options.max_seconds
-                           : std::get<SampledPath>(device.path()).end_s() + 0.1;
+                           : phase.script.path.end_s() + 0.1;
   std::vector<double> ages_ms;
   ages_ms.reserve(4096);
   gl::DrawOptions draw;

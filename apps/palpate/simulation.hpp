@@ -17,22 +17,46 @@
 
 namespace palpate::cli {
 
-// One stretch of a run: a scene state (which objects are visible and touchable), a camera and the
-// presses the scripted probe makes, one after the other.
+// What the scripted probe does: a device path sampled every millisecond, and the strokes on it.
+struct ProbeScript {
+  struct Stroke {
+    double start_s = 0.0, end_s = 0.0;  // from the start of the approach to the end of the pull-out
+    bool slide = false;                 // a long slide (else a press)
+  };
+  SampledPath path{{PathSample{}}};
+  std::vector<Stroke> strokes;
+};
+
+// One stretch of a run: a scene state (which objects are visible and touchable), a camera and what
+// the probe does.
 struct Phase {
   std::string model;  // the row name in the paper's Table I: "Brain", "Skin", "Skin + Brain"
   Scene scene;
   OrbitCamera camera;
-  std::vector<PressSlide> presses;
+  ProbeScript script;
 };
 
-// The presses as one device path sampled every millisecond, with transits between them that leave
-// along the normal to `clearance_mm` so the tip never cuts through the object in free flight.
-struct ProbeScript {
-  SampledPath path;
-  std::vector<double> press_start_s;  // when each press begins on the path
+// Presses one after the other, with transits between them that leave along the normal to
+// `clearance_mm` so the tip never cuts through the object in free flight.
+ProbeScript press_script(const std::vector<PressSlide>& presses, float clearance_mm = 60.0f);
+
+struct SurfaceSlide {
+  float start_height_mm = 12.0f;   // approach from this far outside
+  float depth_mm = 3.0f;           // below the surface, along the direction from the object's centre
+  float depth_amplitude_mm = 1.0f;  // depth varies by this much, two cycles over the slide
+  float length_mm = 50.0f;         // along a great circle about the object's bounds centre
+  float speed_mm_per_s = 20.0f;
+  float approach_s = 0.4f, retract_s = 0.3f;
+  glm::vec2 screen_direction{1.0f, 0.0f};  // heading on screen: x right, y up
 };
-ProbeScript make_script(const std::vector<PressSlide>& presses, float clearance_mm = 60.0f);
+
+// A slide that follows the object's real surface: at each millisecond the tip is `depth` below the
+// surface point found by a ray toward the object's centre, so it dips into sulci instead of ploughing
+// through gyri (a slide at a fixed depth below a smooth sphere traps a god-object in the first
+// groove). Starts at the surface seen through the viewport position `where` and heads along
+// `screen_direction`. Throws palpate::Error when the view misses the object.
+ProbeScript surface_slide_script(const Scene& scene, int object_index, const OrbitCamera& camera, glm::vec2 where,
+                                 const SurfaceSlide& spec);
 
 // A surface point of `object_index` seen from the camera through the viewport position `where`
 // (x, y in [0, 1] from the top left), aimed as a press sliding toward the camera's right.
