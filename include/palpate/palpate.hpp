@@ -1,0 +1,22 @@
+#pragma once
+// Everything palpate offers in one include. Prefer the part headers in larger programs: the core ones
+// need no OpenGL, the haptic ones no window.
+#include "palpate/core/bvh.hpp"
+#include "palpate/core/contact.hpp"
+#include "palpate/core/deform.hpp"
+#include "palpate/core/error.hpp"
+#include "palpate/core/load.hpp"
+#include "palpate/core/mesh_topology.hpp"
+#include "palpate/core/orbit_camera.hpp"
+#include "palpate/core/phantom.hpp"
+#include "palpate/core/scene_file.hpp"
+#include "palpate/core/shapes.hpp"
+#include "palpate/gl/deform_glsl.hpp"
+#include "palpate/gl/framebuffer.hpp"
+#include "palpate/gl/headless_context.hpp"
+#include "palpate/gl/png.hpp"
+#include "palpate/gl/renderer.hpp"
+#include "palpate/gl/window.hpp"
+#include "palpate/haptics/haptic_loop.hpp"
+#include "palpate/haptics/scripted_device.hpp"
+#include "palpate/haptics/virtual_device.hpp"
