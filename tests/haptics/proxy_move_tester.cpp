@@ -272,6 +272,8 @@ class MoveTester {
 
 void run_proxy_moves(const Scene& scene, std::uint32_t seed, MoveOptions options) {
   options.ticks = std::max(1, options.ticks / move_divisor);
+  // Fewer moves, as many release checks: sample them as much more often.
+  options.release_check_every = std::max(1, options.release_check_every / move_divisor);
   MoveTester(scene, seed, options).run();
 }
 
