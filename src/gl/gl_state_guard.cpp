@@ -18,6 +18,7 @@ GlStateGuard::GlStateGuard(GLuint uniform_binding) noexcept : uniform_binding_(u
   glGetIntegerv(GL_FRONT_FACE, &front_face_);
   blend_ = glIsEnabled(GL_BLEND);
   glGetIntegerv(GL_POLYGON_MODE, polygon_mode_);
+  glGetBooleanv(GL_COLOR_WRITEMASK, color_mask_);
 }
 
 GlStateGuard::~GlStateGuard() {
@@ -40,6 +41,7 @@ GlStateGuard::~GlStateGuard() {
   glFrontFace(static_cast<GLenum>(front_face_));
   blend_ ? glEnable(GL_BLEND) : glDisable(GL_BLEND);
   glPolygonMode(GL_FRONT_AND_BACK, static_cast<GLenum>(polygon_mode_[0]));
+  glColorMask(color_mask_[0], color_mask_[1], color_mask_[2], color_mask_[3]);
 }
 
 }  // namespace palpate::gl

@@ -21,6 +21,7 @@ class GlStateGuard {
   GLboolean depth_test_ = GL_FALSE, depth_mask_ = GL_TRUE, cull_face_ = GL_FALSE, blend_ = GL_FALSE;
   GLint depth_func_ = GL_LESS, cull_face_mode_ = GL_BACK, front_face_ = GL_CCW;
   GLint polygon_mode_[2] = {GL_FILL, GL_FILL};
+  GLboolean color_mask_[4] = {GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE};
 };
 
 }  // namespace palpate::gl

@@ -112,4 +112,16 @@ std::string render_vertex_shader(ShaderVariant variant) { return header(variant)
 
 std::string render_fragment_shader(ShaderVariant variant) { return header(variant) + std::string(fragment_body); }
 
+std::string occlusion_proxy_vertex_shader() {
+  return R"glsl(#version 450 core
+layout(location = 0) in vec3 corner;     // world mm
+layout(location = 1) in vec3 direction;  // a corner of the unit cube
+uniform mat4 view_projection;
+uniform float pad;  // mm
+void main() { gl_Position = view_projection * vec4(corner + pad * direction, 1.0); }
+)glsl";
+}
+
+std::string occlusion_proxy_fragment_shader() { return "#version 450 core\nvoid main() {}\n"; }
+
 }  // namespace palpate::gl

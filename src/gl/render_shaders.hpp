@@ -15,4 +15,9 @@ struct ShaderVariant {
 std::string render_vertex_shader(ShaderVariant variant);
 std::string render_fragment_shader(ShaderVariant variant);
 
+// The occlusion queries' program (occlusion_proxy.hpp): depth only, no colour, each proxy vertex
+// padded by the uniform `pad`.
+std::string occlusion_proxy_vertex_shader();
+std::string occlusion_proxy_fragment_shader();
+
 }  // namespace palpate::gl

@@ -5,14 +5,18 @@
 #include <cmath>
 #include <cstdint>
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_access.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
+#include <numeric>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "gl_state_guard.hpp"
+#include "occlusion_proxy.hpp"
 #include "palpate/core/error.hpp"
 #include "palpate/core/shapes.hpp"
 #include "palpate/gl/deform_glsl.hpp"
@@ -25,6 +29,7 @@ namespace {
 
 constexpr std::size_t triangles_per_cluster = 64;
 constexpr GLuint attribute_position = 0, attribute_normal = 1, attribute_color = 2;
+constexpr float occlusion_margin_mm = 0.5f;
 
 // One linked program and where its uniforms are.
 struct Program {
@@ -179,9 +184,46 @@ struct NaiveBuffers {
   NaiveBuffers& operator=(const NaiveBuffers&) = delete;
 };
 
+// An occlusion query object.
+struct Query {
+  GLuint id = 0;
+  Query() { glCreateQueries(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, 1, &id); }
+  ~Query() { glDeleteQueries(1, &id); }
+  Query(const Query&) = delete;
+  Query& operator=(const Query&) = delete;
+};
+
+// An occlusion proxy in GPU buffers: corners as positions, pad directions as normals.
+struct GpuProxy {
+  OcclusionProxy shape;
+  GpuMesh mesh;
+
+  explicit GpuProxy(OcclusionProxy proxy) : shape(std::move(proxy)), mesh(as_mesh(shape)) {}
+
+  static Mesh as_mesh(const OcclusionProxy& proxy) {
+    Mesh mesh;
+    mesh.positions = proxy.corners;
+    mesh.normals = proxy.directions;
+    mesh.indices = proxy.indices;
+    return mesh;
+  }
+};
+
+// The occlusion queries' program.
+struct ProxyProgram {
+  ShaderProgram program{"palpate renderer (occlusion proxy)", occlusion_proxy_vertex_shader(),
+                        occlusion_proxy_fragment_shader()};
+  GLint view_projection = program.uniform("view_projection");
+  GLint pad = program.uniform("pad");
+};
+
 struct RenderObject {
   Mesh mesh;  // object frame, triangles in cluster order (the CPU-naive path deforms it)
   glm::mat4 transform{1.0f};
+  Bounds world_bounds;  // undeformed
+  std::unique_ptr<GpuProxy> proxy;  // none: never culled
+  Query occlusion;
+  bool queried = false;  // in the last draw
   Material material;
   std::vector<TriangleCluster> clusters;
   std::vector<glm::vec3> cluster_centers;  // world
@@ -199,7 +241,9 @@ struct RenderObject {
 struct Renderer::State {
   std::vector<Program> programs;  // indexed by program_index
   std::unique_ptr<GpuMesh> probe;  // unit sphere for the probe and contact-point markers
+  std::unique_ptr<ProxyProgram> proxy_program;
   std::vector<std::unique_ptr<RenderObject>> objects;
+  std::vector<std::size_t> draw_order;  // enclosing objects first
 
   // The program for `dents` dents (0: the plain program).
   const Program& program(int dents, Shading shading, bool vertex_colors) const {
@@ -209,6 +253,10 @@ struct Renderer::State {
   static int add_dent(RenderObject& object, const Dent& dent) noexcept;
   void render(const glm::mat4& view, const glm::mat4& projection, const DrawOptions& options,
               std::span<const Contact> probes, DrawResult& result);
+  // Draws the object's proxy, padded by its dents, into its occlusion query (front faces, no colour, no
+  // depth written) and starts conditional rendering on it. False, and nothing started, where the near
+  // plane cuts the proxy: its front faces there are clipped away and could no longer vouch for the object.
+  bool begin_occlusion_test(RenderObject& object, const glm::mat4& view_projection) const;
 };
 
 Renderer::Renderer() : state_(std::make_unique<State>()) {
@@ -217,6 +265,7 @@ Renderer::Renderer() : state_(std::make_unique<State>()) {
   const DeformBlock binding_only;
   for (std::size_t i = 4; i < program_count; ++i) binding_only.attach(state_->programs[i].program.id());
   state_->probe = std::make_unique<GpuMesh>(make_sphere(1.0f, 642));
+  state_->proxy_program = std::make_unique<ProxyProgram>();
 }
 
 Renderer::~Renderer() = default;
@@ -240,9 +289,34 @@ void Renderer::upload(const Scene& scene) {
       object->cluster_centers.push_back(glm::vec3(object->transform * glm::vec4(cluster.center, 1.0f)));
     }
     object->gpu = std::make_unique<GpuMesh>(object->mesh);
+    object->world_bounds = world_bounds(source);
     objects.push_back(std::move(object));
   }
+  // Enclosing objects first, so that what they hide can be culled.
+  std::vector<std::size_t> order(objects.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  const auto volume = [&](std::size_t i) {
+    const glm::vec3 size = objects[i]->world_bounds.size();
+    return size.x * size.y * size.z;
+  };
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return volume(a) > volume(b); });
+  // Every visible object but the first drawn may be culled: those get a proxy.
+  bool first_visible = true;
+  for (const std::size_t index : order) {
+    RenderObject& object = *objects[index];
+    if (!object.material.visible) continue;
+    if (!std::exchange(first_visible, false)) {
+      const SceneObject& source = scene.objects[index];
+      std::vector<glm::vec3> world(source.mesh.positions.size());
+      std::transform(source.mesh.positions.begin(), source.mesh.positions.end(), world.begin(),
+                     [&](glm::vec3 p) { return glm::vec3(source.transform * glm::vec4(p, 1.0f)); });
+      if (auto proxy = make_occlusion_proxy(world, occlusion_margin_mm)) {
+        object.proxy = std::make_unique<GpuProxy>(std::move(*proxy));
+      }
+    }
+  }
   state_->objects = std::move(objects);
+  state_->draw_order = std::move(order);
 }
 
 std::size_t Renderer::object_count() const noexcept { return state_->objects.size(); }
@@ -312,6 +386,7 @@ void set_draw_state() noexcept {
   glFrontFace(GL_CCW);
   glDisable(GL_BLEND);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
 }
 
 // A sphere of `radius` at `center`, for the probe and the contact points.
@@ -321,6 +396,36 @@ void draw_marker(const Program& program, const GpuMesh& sphere, glm::vec3 center
 }
 
 }  // namespace
+
+bool Renderer::State::begin_occlusion_test(RenderObject& object, const glm::mat4& view_projection) const {
+  if (!object.proxy) return false;
+  // A vertex moves by at most the sum of its dents' depths (along its normal, G <= p each). The proxy
+  // holds the margin besides, for rounding here and in the rasterizer.
+  float pad = 0.0f;
+  for (int i = 0; i < object.dent_count; ++i) pad += std::abs(object.dents[static_cast<std::size_t>(i)].depth_mm);
+  // The near plane, clip z + w >= 0, scaled to world millimetres. A convex proxy with every vertex at
+  // least the margin beyond it is not clipped there (NaN fails the test too: drawn unconditionally).
+  const glm::vec4 near_plane = glm::row(view_projection, 2) + glm::row(view_projection, 3);
+  const glm::vec4 near_mm = near_plane / glm::length(glm::vec3(near_plane));
+  const OcclusionProxy& shape = object.proxy->shape;
+  for (std::size_t i = 0; i < shape.corners.size(); ++i) {
+    if (!(glm::dot(near_mm, glm::vec4(shape.vertex(i, pad), 1.0f)) >= occlusion_margin_mm)) return false;
+  }
+
+  glColorMask(GL_FALSE, GL_FALSE, GL_FALSE, GL_FALSE);
+  glDepthMask(GL_FALSE);
+  glUseProgram(proxy_program->program.id());
+  glProgramUniform1f(proxy_program->program.id(), proxy_program->pad, pad);
+  glBindVertexArray(object.proxy->mesh.vertex_array);
+  glBeginQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, object.occlusion.id);
+  draw_all(object.proxy->mesh);
+  glEndQuery(GL_ANY_SAMPLES_PASSED_CONSERVATIVE);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
+  glDepthMask(GL_TRUE);
+  // Waits for the query on the GPU: on llvmpipe the result is not there yet without waiting.
+  glBeginConditionalRender(object.occlusion.id, GL_QUERY_WAIT);
+  return true;
+}
 
 DrawResult Renderer::draw(const glm::mat4& view, const glm::mat4& projection, std::span<const Contact> contacts,
                           const DrawOptions& options) {
@@ -366,10 +471,18 @@ void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection,
   set_draw_state();
   const FrameUniforms frame(view, projection, options.lighting);
   for (const Program& p : programs) frame.set(p, options.lighting);
+  glProgramUniformMatrix4fv(proxy_program->program.id(), proxy_program->view_projection, 1, GL_FALSE,
+                            glm::value_ptr(frame.view_projection));
 
-  for (auto& pointer : objects) {
-    RenderObject& object = *pointer;
+  bool drawn_before = false;
+  for (const std::size_t index : draw_order) {
+    RenderObject& object = *objects[index];
+    object.queried = false;
     if (!object.material.visible) continue;
+    const bool query = options.occlusion_culling && drawn_before && begin_occlusion_test(object, frame.view_projection);
+    drawn_before = true;
+    object.queried = query;
+    if (query) ++result.occlusion_tested;
     const bool colors = object.gpu->color_buffer != 0;
     const Program& plain = program(0, options.shading, colors);
     const std::span<const Dent> object_dents(object.dents.data(), static_cast<std::size_t>(object.dent_count));
@@ -410,6 +523,16 @@ void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection,
         glUseProgram(deform.program.id());
         draw_all(*object.gpu);
       }
+    }
+    if (query) glEndConditionalRender();
+  }
+
+  if (options.read_occlusion_results) {
+    for (const auto& object : objects) {
+      if (!object->queried) continue;
+      GLuint any_sample_passed = GL_TRUE;
+      glGetQueryObjectuiv(object->occlusion.id, GL_QUERY_RESULT, &any_sample_passed);
+      if (!any_sample_passed) ++result.occlusion_culled;
     }
   }
 

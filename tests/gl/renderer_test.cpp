@@ -313,7 +313,12 @@ std::vector<GLint64> gl_state_snapshot() {
 
 TEST(RendererState, LeavesTheHostsGlStateAsItFoundItAndIgnoresIt) {
   test::gl_context();
-  const Scene scene = scene_of(make_bumpy_sphere(40.0f, 2.0f, 20000), 6.0f);
+  // A second object inside the first, so that the occlusion query runs (and masks colour) too.
+  Scene scene = scene_of(make_bumpy_sphere(40.0f, 2.0f, 20000), 6.0f);
+  SceneObject inner;
+  inner.name = "inner";
+  inner.mesh = make_sphere(20.0f, 2000);
+  scene.objects.push_back(inner);
   const Camera camera = looking_at({0.0f, -140.0f, 40.0f}, {0, 0, 0});
   Contact contact;
   contact.object = 0;
@@ -325,8 +330,11 @@ TEST(RendererState, LeavesTheHostsGlStateAsItFoundItAndIgnoresIt) {
   renderer.upload(scene);
   DrawOptions options;
   options.draw_contact_points = true;
+  options.read_occlusion_results = true;
   const auto frame = [&] {
-    renderer.draw(camera.view, camera.projection, {&contact, 1}, options);
+    const DrawResult result = renderer.draw(camera.view, camera.projection, {&contact, 1}, options);
+    EXPECT_EQ(result.occlusion_tested, 1);
+    EXPECT_EQ(result.occlusion_culled, 1);
     options.deformation = Deformation::cpu_naive;
     renderer.draw(camera.view, camera.projection, {&contact, 1}, options);
     options.deformation = Deformation::gpu;
@@ -364,6 +372,7 @@ TEST(RendererState, LeavesTheHostsGlStateAsItFoundItAndIgnoresIt) {
   glBlendFunc(GL_ONE, GL_ONE);
   glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
   glScissor(3, 4, 50, 60);
+  glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_FALSE);
   const std::vector<GLint64> before = gl_state_snapshot();
   frame();
   EXPECT_EQ(gl_state_snapshot(), before);
@@ -379,6 +388,7 @@ TEST(RendererState, LeavesTheHostsGlStateAsItFoundItAndIgnoresIt) {
   glBindBuffer(GL_UNIFORM_BUFFER, 0);
   glActiveTexture(GL_TEXTURE0);
   glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
+  glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glDepthMask(GL_TRUE);
   glDepthFunc(GL_LESS);
   glCullFace(GL_BACK);
