@@ -10,6 +10,7 @@
 #include "palpate/core/load.hpp"
 #include "palpate/core/mesh_topology.hpp"
 #include "palpate/core/phantom.hpp"
+#include "palpate/core/scene_file.hpp"
 
 namespace palpate::cli {
 namespace {
@@ -19,10 +20,15 @@ int mesh_info(const std::vector<std::string>& files) {
   for (const std::string& file : files) {
     try {
       const auto start = std::chrono::steady_clock::now();
-      const Scene model = load_model(file);
+      const bool scene_file = std::filesystem::path(file).extension() == ".toml";
+      const Scene model = scene_file ? load_scene(file) : load_model(file);
       const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       Mesh merged;
-      for (const SceneObject& object : model.objects) append_mesh(merged, object.mesh);
+      for (const SceneObject& object : model.objects) {
+        Mesh world = object.mesh;
+        for (glm::vec3& p : world.positions) p = glm::vec3(object.transform * glm::vec4(p, 1.0f));
+        append_mesh(merged, world);
+      }
       const Bounds box = bounds(merged);
       const MeshTopology topo = analyze_topology(merged);
       std::printf("%s\n", file.c_str());
@@ -54,7 +60,7 @@ void add_mesh_command(CLI::App& app) {
 
   auto files = std::make_shared<std::vector<std::string>>();
   CLI::App* info = group->add_subcommand("info", "Objects, vertices, triangles, bounds, topology and load time");
-  info->add_option("files", *files, "Model files (.wrl .wrl.gz .iv .obj .ply .stl .off .gltf .glb)")
+  info->add_option("files", *files, "Model files (.wrl .wrl.gz .iv .obj .ply .stl .off .gltf .glb .gii) or scene files (.toml)")
       ->required()
       ->check(CLI::ExistingFile);
   on_selected(info, [files] { return mesh_info(*files); });

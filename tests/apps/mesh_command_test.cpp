@@ -41,6 +41,14 @@ TEST(MeshCommand, ConvertKeepsTheGeometry) {
   EXPECT_TRUE(analyze_topology(back).closed());
 }
 
+TEST(MeshCommand, InfoReadsTheExampleSceneFile) {
+  const auto info = test::run_command(cli + " mesh info " + (test::source_dir() / "examples/scenes/default.toml").string());
+  ASSERT_EQ(info.exit_status, 0) << info.output;
+  EXPECT_NE(info.output.find("objects     2"), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("vertices    159,063"), std::string::npos) << info.output;
+  EXPECT_NE(info.output.find("components  2"), std::string::npos) << info.output;
+}
+
 TEST(MeshCommand, ErrorsGoToStderrWithANonZeroExit) {
   const auto dir = test::scratch_dir("mesh_command_errors");
   const auto missing = test::run_command(cli + " mesh info " + (dir / "absent.ply").string());
