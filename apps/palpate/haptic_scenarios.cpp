@@ -125,22 +125,27 @@ std::vector<SampledPath> sphere_slide_cycles(const BumpySphereReference& referen
   return cycles;
 }
 
-std::vector<PressSlide> aimed_press_slides(const Scene& scene, std::size_t object, const CycleShape& shape) {
+std::vector<PressSlide> aimed_press_slides(const Scene& scene, std::size_t object, const CycleShape& shape,
+                                           const SurfaceReference* reference) {
   const SceneObject& target = scene.objects.at(object);
   std::mt19937 rng(shape.seed);
   std::uniform_int_distribution<std::size_t> pick(0, target.mesh.positions.size() - 1);
   std::vector<PressSlide> slides;
-  for (int c = 0; c < shape.cycles; ++c) {
+  for (int attempts = 0; int(slides.size()) < shape.cycles; ++attempts) {
+    if (attempts > 1000 * shape.cycles) throw Error("haptic scenario: no vertex of '" + target.name + "' can be approached from outside");
     const PressSlide aimed = aim_press_slide(target, pick(rng), glm::vec3(0.0f));
-    slides.push_back(press_slide(aimed.surface_point_mm, aimed.normal, random_tangent(rng, aimed.normal),
-                                 std::max(aimed.curvature_radius_mm, 10.0f), shape));
+    const PressSlide slide = press_slide(aimed.surface_point_mm, aimed.normal, random_tangent(rng, aimed.normal),
+                                         std::max(aimed.curvature_radius_mm, 10.0f), shape);
+    if (reference && reference->depth_mm(PressSlidePath(slide).sample(0.0).position_mm) > 0.0) continue;
+    slides.push_back(slide);
   }
   return slides;
 }
 
-std::vector<SampledPath> aimed_cycles(const Scene& scene, std::size_t object, const CycleShape& shape) {
+std::vector<SampledPath> aimed_cycles(const Scene& scene, std::size_t object, const CycleShape& shape,
+                                      const SurfaceReference* reference) {
   std::vector<SampledPath> cycles;
-  for (const PressSlide& spec : aimed_press_slides(scene, object, shape)) {
+  for (const PressSlide& spec : aimed_press_slides(scene, object, shape, reference)) {
     const PressSlidePath path(spec);
     std::vector<PathSample> samples(std::size_t(shape.ticks_per_cycle));
     for (int k = 0; k < shape.ticks_per_cycle; ++k) samples[std::size_t(k)] = {k * 1e-3, path.sample(k * 1e-3).position_mm};

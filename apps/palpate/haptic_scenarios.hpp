@@ -53,8 +53,13 @@ std::vector<SampledPath> sphere_slide_cycles(const BumpySphereReference& referen
 
 // The same press-slide aimed at random vertices of object `object` (along their vertex normals),
 // sliding on the sphere through the vertex about the object's bounding-box centre; one per cycle.
-std::vector<PressSlide> aimed_press_slides(const Scene& scene, std::size_t object, const CycleShape& shape);
+// With `reference`, vertices whose path would start inside the scene (in a fold, the smoothed normal
+// can point into a neighbouring gyrus) are passed over: a tip that starts inside is by design followed
+// without force, which the checks would count as pop-through.
+std::vector<PressSlide> aimed_press_slides(const Scene& scene, std::size_t object, const CycleShape& shape,
+                                           const SurfaceReference* reference = nullptr);
 // Those press-slides sampled at the ticks.
-std::vector<SampledPath> aimed_cycles(const Scene& scene, std::size_t object, const CycleShape& shape);
+std::vector<SampledPath> aimed_cycles(const Scene& scene, std::size_t object, const CycleShape& shape,
+                                      const SurfaceReference* reference = nullptr);
 
 }  // namespace palpate::cli
