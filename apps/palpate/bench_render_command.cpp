@@ -98,7 +98,7 @@ struct Camera {
   glm::vec3 eye;
 };
 
-// The whole scene in view, seen from the front (-y) and a little above.
+// The whole scene in view, seen from behind (-y; the face looks along +y) and a little above.
 Camera frame_scene(const Scene& scene, int width, int height) {
   const glm::vec3 center = world_bounds(scene).center();
   float radius = 0.0f;
