@@ -249,8 +249,14 @@ struct Renderer::State {
   const Program& program(int dents, Shading shading, bool vertex_colors) const {
     return programs[program_index(dents, shading == Shading::normals, vertex_colors)];
   }
-  // Adds a dent to the object's list; returns 1 when the list is full and the dent is dropped.
-  static int add_dent(RenderObject& object, const Dent& dent) noexcept;
+  // The uploaded object of that index, or null.
+  RenderObject* object_at(int index) const noexcept {
+    return index >= 0 && static_cast<std::size_t>(index) < objects.size() ? objects[static_cast<std::size_t>(index)].get()
+                                                                          : nullptr;
+  }
+  // Adds a dent to the object's list; returns 1 when the dent is dropped (no such object, or its list
+  // is full).
+  int add_dent(int object_index, const Dent& dent) noexcept;
   void render(const glm::mat4& view, const glm::mat4& projection, const DrawOptions& options,
               std::span<const Contact> probes, DrawResult& result);
   // Draws the object's proxy, padded by its dents, into its occlusion query (front faces, no colour, no
@@ -433,12 +439,9 @@ DrawResult Renderer::draw(const glm::mat4& view, const glm::mat4& projection, st
   for (auto& object : state_->objects) object->dent_count = 0;
   for (const Contact& contact : contacts) {
     if (!contact.in_contact()) continue;
-    if (static_cast<std::size_t>(contact.object) >= state_->objects.size()) {
-      ++result.dropped_dents;
-      continue;
-    }
-    RenderObject& object = *state_->objects[static_cast<std::size_t>(contact.object)];
-    result.dropped_dents += state_->add_dent(object, dent_from_contact(contact, object.material.sigma_mm));
+    const RenderObject* object = state_->object_at(contact.object);
+    result.dropped_dents +=
+        object ? state_->add_dent(contact.object, dent_from_contact(contact, object->material.sigma_mm)) : 1;
   }
   state_->render(view, projection, options, options.draw_probe ? contacts : std::span<const Contact>(), result);
   return result;
@@ -448,20 +451,15 @@ DrawResult Renderer::draw(const glm::mat4& view, const glm::mat4& projection, st
                           const DrawOptions& options) {
   DrawResult result;
   for (auto& object : state_->objects) object->dent_count = 0;
-  for (const ObjectDent& entry : dents) {
-    if (entry.object < 0 || static_cast<std::size_t>(entry.object) >= state_->objects.size()) {
-      ++result.dropped_dents;
-      continue;
-    }
-    result.dropped_dents += state_->add_dent(*state_->objects[static_cast<std::size_t>(entry.object)], entry.dent);
-  }
+  for (const ObjectDent& entry : dents) result.dropped_dents += state_->add_dent(entry.object, entry.dent);
   state_->render(view, projection, options, {}, result);
   return result;
 }
 
-int Renderer::State::add_dent(RenderObject& object, const Dent& dent) noexcept {
-  if (object.dent_count == max_dents) return 1;
-  object.dents[static_cast<std::size_t>(object.dent_count++)] = dent;
+int Renderer::State::add_dent(int object_index, const Dent& dent) noexcept {
+  RenderObject* object = object_at(object_index);
+  if (!object || object->dent_count == max_dents) return 1;
+  object->dents[static_cast<std::size_t>(object->dent_count++)] = dent;
   return 0;
 }
 
