@@ -15,13 +15,20 @@
 namespace palpate::cli {
 namespace {
 
+// Loader warnings (fields dropped, text skipped; each names its file) go to stderr.
+LoadOptions warn_on_stderr() {
+  LoadOptions options;
+  options.on_warning = [](const std::string& warning) { std::fprintf(stderr, "palpate: warning: %s\n", warning.c_str()); };
+  return options;
+}
+
 int mesh_info(const std::vector<std::string>& files) {
   int status = 0;
   for (const std::string& file : files) {
     try {
       const auto start = std::chrono::steady_clock::now();
       const bool scene_file = std::filesystem::path(file).extension() == ".toml";
-      const Scene model = scene_file ? load_scene(file) : load_model(file);
+      const Scene model = scene_file ? load_scene(file) : load_model(file, warn_on_stderr());
       const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       Mesh merged;
       for (const SceneObject& object : model.objects) {
@@ -70,7 +77,7 @@ void add_mesh_command(CLI::App& app) {
   convert->add_option("input", *in, "Model file to read")->required()->check(CLI::ExistingFile);
   convert->add_option("output", *out, "File to write; the format follows the extension")->required();
   on_selected(convert, [in, out] {
-    const Mesh mesh = load_mesh(*in);
+    const Mesh mesh = load_mesh(*in, warn_on_stderr());
     save_mesh(mesh, *out);
     std::printf("wrote %s: %s vertices, %s triangles\n", out->c_str(), with_thousands(mesh.vertex_count()).c_str(),
                 with_thousands(mesh.triangle_count()).c_str());
