@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "palpate/core/error.hpp"
+#include "mesh_expectations.hpp"
 #include "palpate/core/mesh_topology.hpp"
 
 namespace palpate {
@@ -46,13 +47,7 @@ void expect_closed_sphere(const Mesh& m, std::size_t vertices) {
   EXPECT_EQ(m.vertex_count(), vertices);
   EXPECT_EQ(m.triangle_count(), 2 * vertices - 4);
   EXPECT_EQ(m.normals.size(), vertices);
-  const MeshTopology t = analyze_topology(m);
-  EXPECT_TRUE(t.closed());
-  EXPECT_TRUE(t.manifold());
-  EXPECT_TRUE(t.oriented());
-  EXPECT_EQ(t.components, 1u);
-  EXPECT_EQ(t.euler_characteristic, 2);
-  EXPECT_EQ(t.unreferenced_vertices, 0u);
+  test::expect_sphere_topology(m);
 }
 
 // Star-shaped about `centre` with outward normals: every triangle turns counter-clockwise seen from the

@@ -4,20 +4,11 @@
 
 #include <glm/geometric.hpp>
 
+#include "mesh_expectations.hpp"
 #include "palpate/core/mesh_topology.hpp"
 
 namespace palpate {
 namespace {
-
-void expect_closed_sphere_like(const Mesh& m) {
-  const MeshTopology t = analyze_topology(m);
-  EXPECT_TRUE(t.closed());
-  EXPECT_TRUE(t.manifold());
-  EXPECT_TRUE(t.oriented());
-  EXPECT_EQ(t.components, 1u);
-  EXPECT_EQ(t.euler_characteristic, 2);
-  EXPECT_EQ(t.unreferenced_vertices, 0u);
-}
 
 class SphereCount : public ::testing::TestWithParam<std::size_t> {};
 
@@ -25,7 +16,7 @@ TEST_P(SphereCount, HasExactlyTheVerticesAskedAndIsClosed) {
   const Mesh m = make_sphere(10.0f, GetParam());
   EXPECT_EQ(m.vertex_count(), GetParam());
   EXPECT_EQ(m.triangle_count(), 2 * GetParam() - 4);
-  expect_closed_sphere_like(m);
+  test::expect_sphere_topology(m);
   for (std::size_t v = 0; v < m.vertex_count(); ++v) {
     EXPECT_NEAR(glm::length(m.positions[v]), 10.0f, 1e-4f);
     EXPECT_GT(glm::dot(m.normals[v], m.positions[v]), 9.9f);  // outward
@@ -37,7 +28,7 @@ INSTANTIATE_TEST_SUITE_P(Counts, SphereCount, ::testing::Values(5, 6, 12, 100, 1
 TEST(BumpySphere, HasTheEvenTriangleCountNearestAndBumpsWithinRange) {
   const Mesh m = make_bumpy_sphere(50.0f, 1.5f, 53021);
   EXPECT_EQ(m.triangle_count(), 53022u);
-  expect_closed_sphere_like(m);
+  test::expect_sphere_topology(m);
   float lo = 1e9f, hi = 0.0f;
   for (const glm::vec3& p : m.positions) {
     lo = std::min(lo, glm::length(p));
