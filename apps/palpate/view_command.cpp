@@ -37,19 +37,46 @@ struct ViewOptions {
   float press_depth_mm = 0.0f;  // start with the tip this deep under the window's centre
 };
 
-// The haptic side of the viewer: rebuilt whenever a material or touchability changes, so the haptic
-// thread never reads a value the GUI is writing.
+// The haptic side of the viewer. The haptic thread reads the scene's stiffness, damping and
+// touchability, so those change only while its loop is stopped.
 struct Haptics {
   Bvh bvh;
   std::unique_ptr<HapticLoop> loop;
 };
 
-void restart_haptics(Haptics& haptics, VirtualDevice& device, const Scene& scene) {
-  if (haptics.loop) haptics.loop->stop();
-  haptics.loop.reset();
-  haptics.bvh = Bvh::build(scene);
+// Starts a new loop on `scene`, rebuilding the BVH first when touchability changed.
+void restart_haptics(Haptics& haptics, VirtualDevice& device, const Scene& scene, bool rebuild_bvh) {
+  haptics.loop.reset();  // stops and joins the thread: it borrows the BVH
+  if (rebuild_bvh) haptics.bvh = Bvh::build(scene);
   haptics.loop = std::make_unique<HapticLoop>(device, scene, haptics.bvh);
   haptics.loop->start();
+}
+
+// Applies the panel's edited materials to the scene: what the haptic thread reads only with its loop
+// stopped, what only the renderer reads (its own copy, uploaded again) at once.
+void apply_materials(Scene& scene, const std::vector<Material>& edited, Haptics& haptics, VirtualDevice& device,
+                     gl::Renderer& renderer) {
+  bool touch = false, force = false, look = false;
+  for (std::size_t i = 0; i < edited.size(); ++i) {
+    const Material& now = scene.objects[i].material;
+    const Material& next = edited[i];
+    touch |= now.touchable != next.touchable;
+    force |= now.stiffness_n_per_mm != next.stiffness_n_per_mm || now.damping_ns_per_m != next.damping_ns_per_m;
+    look |= now.sigma_mm != next.sigma_mm || now.visible != next.visible || now.color != next.color;
+  }
+  if (touch || force) {
+    haptics.loop.reset();
+    for (std::size_t i = 0; i < edited.size(); ++i) scene.objects[i].material = edited[i];
+    restart_haptics(haptics, device, scene, touch);
+  } else if (look) {
+    for (std::size_t i = 0; i < edited.size(); ++i) {
+      Material& material = scene.objects[i].material;
+      material.sigma_mm = edited[i].sigma_mm;
+      material.visible = edited[i].visible;
+      material.color = edited[i].color;
+    }
+  }
+  if (look) renderer.upload(scene);
 }
 
 bool save_screenshot(const std::string& file, int width, int height) {
@@ -110,10 +137,9 @@ struct Panel {
   bool draw_contact_point = false;
 };
 
-// The control panel; returns true when a material changed (the haptics and the upload are redone).
-bool draw_panel(Scene& scene, gl::DrawOptions& draw, Panel& panel, const LoopStatistics& stats, const Contact& contact,
-                glm::vec3 force_n, bool& reset_tip, bool& screenshot) {
-  bool changed = false;
+// The control panel. Materials are edited in `materials` (a copy: the haptic thread reads the scene's).
+void draw_panel(const Scene& scene, std::vector<Material>& materials, gl::DrawOptions& draw, Panel& panel,
+                const LoopStatistics& stats, const Contact& contact, glm::vec3 force_n, bool& reset_tip, bool& screenshot) {
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("palpate");
@@ -151,16 +177,16 @@ bool draw_panel(Scene& scene, gl::DrawOptions& draw, Panel& panel, const LoopSta
   }
   if (ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) {
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
-      SceneObject& object = scene.objects[i];
+      Material& material = materials[i];
       ImGui::PushID(int(i));
-      ImGui::Text("%s", object.name.c_str());
-      changed |= ImGui::Checkbox("visible", &object.material.visible);
+      ImGui::Text("%s", scene.objects[i].name.c_str());
+      ImGui::Checkbox("visible", &material.visible);
       ImGui::SameLine();
-      changed |= ImGui::Checkbox("touchable", &object.material.touchable);
-      changed |= ImGui::SliderFloat("sigma mm", &object.material.sigma_mm, 0.5f, 40.0f);
-      changed |= ImGui::SliderFloat("k N/mm", &object.material.stiffness_n_per_mm, 0.02f, 2.0f);
-      changed |= ImGui::SliderFloat("b N s/m", &object.material.damping_ns_per_m, 0.0f, 5.0f);
-      changed |= ImGui::ColorEdit3("colour", &object.material.color.x);
+      ImGui::Checkbox("touchable", &material.touchable);
+      ImGui::SliderFloat("sigma mm", &material.sigma_mm, 0.5f, 40.0f);
+      ImGui::SliderFloat("k N/mm", &material.stiffness_n_per_mm, 0.02f, 2.0f);
+      ImGui::SliderFloat("b N s/m", &material.damping_ns_per_m, 0.0f, 5.0f);
+      ImGui::ColorEdit3("colour", &material.color.x);
       ImGui::PopID();
     }
   }
@@ -177,7 +203,6 @@ bool draw_panel(Scene& scene, gl::DrawOptions& draw, Panel& panel, const LoopSta
     ImGui::SliderFloat("specular", &light.specular, 0.0f, 1.0f);
   }
   ImGui::End();
-  return changed;
 }
 
 int run_view(const ViewOptions& options) {
@@ -210,7 +235,9 @@ int run_view(const ViewOptions& options) {
   VirtualDevice device(start_tip);
   device.set_target(tip);
   Haptics haptics;
-  restart_haptics(haptics, device, scene);
+  restart_haptics(haptics, device, scene, true);
+  std::vector<Material> materials;
+  for (const SceneObject& object : scene.objects) materials.push_back(object.material);
 
   gl::Renderer renderer;
   renderer.upload(scene);
@@ -269,8 +296,7 @@ int run_view(const ViewOptions& options) {
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     bool panel_reset = false, panel_shot = false;
-    const bool materials_changed =
-        draw_panel(scene, draw, panel, stats, shown, device.last_force(), panel_reset, panel_shot);
+    draw_panel(scene, materials, draw, panel, stats, shown, device.last_force(), panel_reset, panel_shot);
     if (reset_tip || panel_reset) {
       tip = start_tip;
       device.set_target(tip);
@@ -279,10 +305,7 @@ int run_view(const ViewOptions& options) {
     if (latest.in_contact()) draw_force_arrow(projection * view, size, latest.hip, device.last_force(), latest.depth_mm);
     ImGui::Render();
 
-    if (materials_changed) {
-      restart_haptics(haptics, device, scene);
-      renderer.upload(scene);
-    }
+    apply_materials(scene, materials, haptics, device, renderer);
     draw.deformation = std::array{gl::Deformation::gpu, gl::Deformation::cpu_naive, gl::Deformation::none}[std::size_t(panel.deformation)];
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, width, height);
