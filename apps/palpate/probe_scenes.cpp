@@ -43,28 +43,33 @@ int largest_shown_inner(const Scene& scene, int outer) {
   return best;
 }
 
+// The scripts' distances are set for the default scene (a head about 400 mm across its bounds'
+// diagonal); other scenes get them in proportion to their size, so the same times and the same look.
+float script_scale(const Scene& scene) { return glm::length(world_bounds(scene).size()) / 400.0f; }
+
 // A short press: the skin's wide dent shows best deep and still.
-PressSlide skin_press() {
+PressSlide skin_press(float scale) {
   PressSlide spec;
-  spec.start_height_mm = 12.0f;
-  spec.approach_speed_mm_per_s = 60.0f;
-  spec.press_depth_mm = 8.0f;
-  spec.slide_length_mm = 8.0f;
-  spec.slide_speed_mm_per_s = 16.0f;
-  spec.depth_amplitude_mm = 2.0f;
+  spec.start_height_mm = 12.0f * scale;
+  spec.approach_speed_mm_per_s = 60.0f * scale;
+  spec.press_depth_mm = 8.0f * scale;
+  spec.slide_length_mm = 8.0f * scale;
+  spec.slide_speed_mm_per_s = 16.0f * scale;
+  spec.depth_amplitude_mm = 2.0f * scale;
   spec.depth_cycles = 0.5f;
-  spec.retract_speed_mm_per_s = 60.0f;
+  spec.retract_speed_mm_per_s = 60.0f * scale;
   spec.rest_s = 0.1f;
   return spec;
 }
 
 // A long slide across the brain's gyri and sulci, following the surface.
-SurfaceSlide brain_slide(float length_mm, float speed_mm_per_s) {
+SurfaceSlide brain_slide(float length_mm, float speed_mm_per_s, float scale) {
   SurfaceSlide spec;
-  spec.depth_mm = 6.0f;
-  spec.depth_amplitude_mm = 1.5f;
-  spec.length_mm = length_mm;
-  spec.speed_mm_per_s = speed_mm_per_s;
+  spec.start_height_mm *= scale;
+  spec.depth_mm = 6.0f * scale;
+  spec.depth_amplitude_mm = 1.5f * scale;
+  spec.length_mm = length_mm * scale;
+  spec.speed_mm_per_s = speed_mm_per_s * scale;
   return spec;
 }
 
@@ -113,9 +118,10 @@ std::vector<Phase> demo_phases(const Scene& scene) {
   Phase presses{model_name(scene, all), scene, demo_camera(world_bounds(scene), 0.7f), {}};
   std::vector<PressSlide> sites;
   for (const glm::vec2 where : {glm::vec2(0.45f, 0.25f), glm::vec2(0.6f, 0.4f), glm::vec2(0.36f, 0.42f)}) {
-    sites.push_back(aim_at_view(scene, outer, presses.camera, where, skin_press()));
+    sites.push_back(aim_at_view(scene, outer, presses.camera, where, skin_press(script_scale(scene))));
   }
-  presses.script = press_script(sites);
+  presses.script = press_script(sites, 60.0f * script_scale(scene));
+  presses.probe_radius_mm = 1.5f * script_scale(scene);
   phases.push_back(std::move(presses));
 
   const int inner = largest_shown_inner(scene, outer);
@@ -125,9 +131,10 @@ std::vector<Phase> demo_phases(const Scene& scene) {
     Scene inside = with_shown(scene, shown);
     Phase slide{model_name(scene, shown), inside, demo_camera(world_bounds(scene.objects[std::size_t(inner)]), 0.45f), {}};
     // Along the smooth gyrus beside the fissure, then across the sulci at its end.
-    SurfaceSlide spec = brain_slide(50.0f, 20.0f);
+    SurfaceSlide spec = brain_slide(50.0f, 20.0f, script_scale(scene));
     spec.screen_direction = {0.35f, -1.0f};
     slide.script = surface_slide_script(inside, inner, slide.camera, {0.6f, 0.2f}, spec);
+    slide.probe_radius_mm = 1.5f * script_scale(scene);
     phases.push_back(std::move(slide));
   }
   return phases;
@@ -152,7 +159,8 @@ std::vector<Phase> table1_phases(const Scene& scene, double seconds) {
     Phase phase{model_name(scene, shown), visible, demo_camera(shown_bounds(visible)), {}};
     // Slow enough that the probe stays in contact for the whole measured stretch.
     phase.script = surface_slide_script(visible, touched, phase.camera, {0.45f, 0.4f},
-                                        brain_slide(60.0f, float(60.0 / std::max(1.0, seconds))));
+                                        brain_slide(60.0f, float(60.0 / std::max(1.0, seconds)), script_scale(scene)));
+    phase.probe_radius_mm = 1.5f * script_scale(scene);
     phases.push_back(std::move(phase));
   }
   return phases;

@@ -184,6 +184,7 @@ PhaseResult run_phase(const Phase& phase, gl::Renderer& renderer, const gl::Fram
   ages_ms.reserve(4096);
   gl::DrawOptions draw;
   draw.deformation = options.deformation;
+  draw.probe_radius_mm = phase.probe_radius_mm;
   double next_capture_s = 0.0;
   double drawing_s = 0.0;
 

@@ -34,6 +34,7 @@ struct Phase {
   Scene scene;
   OrbitCamera camera;
   ProbeScript script;
+  float probe_radius_mm = 1.5f;  // the sphere drawn at the tip
 };
 
 // Presses one after the other, with transits between them that leave along the normal to
