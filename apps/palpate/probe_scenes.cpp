@@ -43,10 +43,6 @@ int largest_shown_inner(const Scene& scene, int outer) {
   return best;
 }
 
-// The scripts' distances are set for the default scene (a head about 400 mm across its bounds'
-// diagonal); other scenes get them in proportion to their size, so the same times and the same look.
-float script_scale(const Scene& scene) { return glm::length(world_bounds(scene).size()) / 400.0f; }
-
 // A short press: the skin's wide dent shows best deep and still.
 PressSlide skin_press(float scale) {
   PressSlide spec;
@@ -74,6 +70,8 @@ SurfaceSlide brain_slide(float length_mm, float speed_mm_per_s, float scale) {
 }
 
 }  // namespace
+
+float scene_scale(const Scene& scene) { return glm::length(world_bounds(scene).size()) / 400.0f; }
 
 int outer_object(const Scene& scene) {
   if (scene.objects.empty()) throw Error("scene has no objects");
@@ -118,10 +116,10 @@ std::vector<Phase> demo_phases(const Scene& scene) {
   Phase presses{model_name(scene, all), scene, demo_camera(world_bounds(scene), 0.7f), {}};
   std::vector<PressSlide> sites;
   for (const glm::vec2 where : {glm::vec2(0.45f, 0.25f), glm::vec2(0.6f, 0.4f), glm::vec2(0.36f, 0.42f)}) {
-    sites.push_back(aim_at_view(scene, outer, presses.camera, where, skin_press(script_scale(scene))));
+    sites.push_back(aim_at_view(scene, outer, presses.camera, where, skin_press(scene_scale(scene))));
   }
-  presses.script = press_script(sites, 60.0f * script_scale(scene));
-  presses.probe_radius_mm = 1.5f * script_scale(scene);
+  presses.script = press_script(sites, 60.0f * scene_scale(scene));
+  presses.probe_radius_mm = 1.5f * scene_scale(scene);
   phases.push_back(std::move(presses));
 
   const int inner = largest_shown_inner(scene, outer);
@@ -131,10 +129,10 @@ std::vector<Phase> demo_phases(const Scene& scene) {
     Scene inside = with_shown(scene, shown);
     Phase slide{model_name(scene, shown), inside, demo_camera(world_bounds(scene.objects[std::size_t(inner)]), 0.45f), {}};
     // Along the smooth gyrus beside the fissure, then across the sulci at its end.
-    SurfaceSlide spec = brain_slide(50.0f, 20.0f, script_scale(scene));
+    SurfaceSlide spec = brain_slide(50.0f, 20.0f, scene_scale(scene));
     spec.screen_direction = {0.35f, -1.0f};
     slide.script = surface_slide_script(inside, inner, slide.camera, {0.6f, 0.2f}, spec);
-    slide.probe_radius_mm = 1.5f * script_scale(scene);
+    slide.probe_radius_mm = 1.5f * scene_scale(scene);
     phases.push_back(std::move(slide));
   }
   return phases;
@@ -159,8 +157,8 @@ std::vector<Phase> table1_phases(const Scene& scene, double seconds) {
     Phase phase{model_name(scene, shown), visible, demo_camera(shown_bounds(visible)), {}};
     // Slow enough that the probe stays in contact for the whole measured stretch.
     phase.script = surface_slide_script(visible, touched, phase.camera, {0.45f, 0.4f},
-                                        brain_slide(60.0f, float(60.0 / std::max(1.0, seconds)), script_scale(scene)));
-    phase.probe_radius_mm = 1.5f * script_scale(scene);
+                                        brain_slide(60.0f, float(60.0 / std::max(1.0, seconds)), scene_scale(scene)));
+    phase.probe_radius_mm = 1.5f * scene_scale(scene);
     phases.push_back(std::move(phase));
   }
   return phases;

@@ -8,6 +8,11 @@
 
 namespace palpate::cli {
 
+// The size of the scene against the default one (a head about 400 mm across its bounds' diagonal):
+// the probe's distances and size are set for the default scene and scaled by this for others, so a
+// model in other units gets the same times and the same look.
+float scene_scale(const Scene& scene);
+
 // The object that encloses the others (the largest bounds): the skin of the default scene.
 int outer_object(const Scene& scene);
 

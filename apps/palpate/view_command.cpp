@@ -104,11 +104,11 @@ bool to_screen(const glm::mat4& view_projection, glm::vec3 p, glm::vec2 size, Im
   return true;
 }
 
-void draw_force_arrow(const glm::mat4& view_projection, glm::vec2 size, glm::vec3 hip, glm::vec3 force_n, float depth_mm) {
+void draw_force_arrow(const glm::mat4& view_projection, glm::vec2 size, glm::vec3 hip, glm::vec3 force_n, float depth_mm,
+                      float mm_per_newton) {
   const float magnitude = glm::length(force_n);
   if (magnitude < 1e-3f) return;
   ImVec2 from, to;
-  const float mm_per_newton = 15.0f;
   if (!to_screen(view_projection, hip, size, from) || !to_screen(view_projection, hip + force_n * mm_per_newton, size, to)) return;
   ImDrawList* draw = ImGui::GetForegroundDrawList();
   const ImU32 color = IM_COL32(255, 210, 60, 255);
@@ -133,6 +133,7 @@ glm::vec3 tip_under_cursor(const OrbitCamera& camera, glm::vec2 cursor, glm::vec
 }
 
 struct Panel {
+  float scale = 1.0f;   // scene_scale: the probe's sizes follow the scene's
   int deformation = 0;  // gl::Deformation: gpu, cpu_naive, none
   bool draw_contact_point = false;
 };
@@ -173,7 +174,7 @@ void draw_panel(const Scene& scene, std::vector<Material>& materials, gl::DrawOp
     ImGui::Checkbox("probe", &draw.draw_probe);
     ImGui::SameLine();
     ImGui::Checkbox("contact point", &draw.draw_contact_points);
-    ImGui::SliderFloat("probe radius mm", &draw.probe_radius_mm, 0.5f, 5.0f);
+    ImGui::SliderFloat("probe radius mm", &draw.probe_radius_mm, 0.2f * panel.scale, 5.0f * panel.scale);
   }
   if (ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) {
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
@@ -219,6 +220,7 @@ int run_view(const ViewOptions& options) {
   ImGui_ImplOpenGL3_Init("#version 450 core");
 
   OrbitCamera camera = demo_camera(world_bounds(scene));
+  const float scale = scene_scale(scene);
   const glm::vec2 initial_size{float(window.framebuffer_width()), float(window.framebuffer_height())};
   // The tip starts 10 mm in front of the surface under the window's centre; with --press-depth it then
   // moves that deep into it (approaching from outside, as a hand would).
@@ -228,7 +230,7 @@ int run_view(const ViewOptions& options) {
     const OrbitCamera::Ray ray = camera.ray_through(initial_size * 0.5f, initial_size);
     const BvhHit hit = bvh.first_hit(glm::dvec3(ray.origin), glm::dvec3(ray.origin + ray.direction * camera.distance_mm * 3.0f));
     if (hit.hit()) {
-      start_tip = hit.point - ray.direction * 10.0f;
+      start_tip = hit.point - ray.direction * 10.0f * scale;
       tip = options.press_depth_mm > 0.0f ? hit.point + ray.direction * options.press_depth_mm : start_tip;
     }
   }
@@ -242,7 +244,9 @@ int run_view(const ViewOptions& options) {
   gl::Renderer renderer;
   renderer.upload(scene);
   gl::DrawOptions draw;
+  draw.probe_radius_mm *= scale;
   Panel panel;
+  panel.scale = scale;
   bool orbiting = false, dragging_tip = false;
   glm::dvec2 last_cursor{0.0};
   int frame = 0;
@@ -268,7 +272,7 @@ int run_view(const ViewOptions& options) {
       if (dragging_tip) tip = tip_under_cursor(camera, pixel, size, tip);
       if (io.MouseWheel != 0.0f) {
         if (io.KeyShift) {
-          tip += glm::normalize(camera.target - camera.eye()) * io.MouseWheel;
+          tip += glm::normalize(camera.target - camera.eye()) * io.MouseWheel * scale;
         } else {
           camera.zoom(std::pow(0.9f, io.MouseWheel));
         }
@@ -278,7 +282,7 @@ int run_view(const ViewOptions& options) {
     bool reset_tip = false, screenshot = false;
     if (!io.WantCaptureKeyboard) {
       const glm::vec3 facing = glm::normalize(camera.target - camera.eye());
-      const float step = 40.0f * io.DeltaTime;  // mm per frame at 40 mm/s
+      const float step = 40.0f * scale * io.DeltaTime;  // 40 mm/s in the default scene
       if (glfwGetKey(native, GLFW_KEY_W) == GLFW_PRESS) tip += facing * step;
       if (glfwGetKey(native, GLFW_KEY_S) == GLFW_PRESS) tip -= facing * step;
       reset_tip = ImGui::IsKeyPressed(GLFW_KEY_R);  // ImGui 1.86 indexes keys by GLFW code
@@ -302,7 +306,7 @@ int run_view(const ViewOptions& options) {
       device.set_target(tip);
     }
     const glm::mat4 view = camera.view(), projection = camera.projection(size.x / size.y);
-    if (latest.in_contact()) draw_force_arrow(projection * view, size, latest.hip, device.last_force(), latest.depth_mm);
+    if (latest.in_contact()) draw_force_arrow(projection * view, size, latest.hip, device.last_force(), latest.depth_mm, 15.0f * scale);
     ImGui::Render();
 
     apply_materials(scene, materials, haptics, device, renderer);
