@@ -135,7 +135,6 @@ glm::vec3 tip_under_cursor(const OrbitCamera& camera, glm::vec2 cursor, glm::vec
 struct Panel {
   float scale = 1.0f;   // scene_scale: the probe's sizes follow the scene's
   int deformation = 0;  // gl::Deformation: gpu, cpu_naive, none
-  bool draw_contact_point = false;
 };
 
 // The control panel. Materials are edited in `materials` (a copy: the haptic thread reads the scene's).
@@ -224,20 +223,19 @@ int run_view(const ViewOptions& options) {
   const glm::vec2 initial_size{float(window.framebuffer_width()), float(window.framebuffer_height())};
   // The tip starts 10 mm in front of the surface under the window's centre; with --press-depth it then
   // moves that deep into it (approaching from outside, as a hand would).
+  Haptics haptics;
+  haptics.bvh = Bvh::build(scene);  // the haptic loop's, also to find where the tip starts
   glm::vec3 start_tip = camera.target, tip = camera.target;
-  {
-    const Bvh bvh = Bvh::build(scene);
-    const OrbitCamera::Ray ray = camera.ray_through(initial_size * 0.5f, initial_size);
-    const BvhHit hit = bvh.first_hit(glm::dvec3(ray.origin), glm::dvec3(ray.origin + ray.direction * camera.distance_mm * 3.0f));
-    if (hit.hit()) {
-      start_tip = hit.point - ray.direction * 10.0f * scale;
-      tip = options.press_depth_mm > 0.0f ? hit.point + ray.direction * options.press_depth_mm : start_tip;
-    }
+  const OrbitCamera::Ray ray = camera.ray_through(initial_size * 0.5f, initial_size);
+  const BvhHit hit =
+      haptics.bvh.first_hit(glm::dvec3(ray.origin), glm::dvec3(ray.origin + ray.direction * camera.distance_mm * 3.0f));
+  if (hit.hit()) {
+    start_tip = hit.point - ray.direction * 10.0f * scale;
+    tip = options.press_depth_mm > 0.0f ? hit.point + ray.direction * options.press_depth_mm : start_tip;
   }
   VirtualDevice device(start_tip);
   device.set_target(tip);
-  Haptics haptics;
-  restart_haptics(haptics, device, scene, true);
+  restart_haptics(haptics, device, scene, false);
   std::vector<Material> materials;
   for (const SceneObject& object : scene.objects) materials.push_back(object.material);
 
