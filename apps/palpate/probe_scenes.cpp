@@ -111,15 +111,14 @@ OrbitCamera demo_camera(const Bounds& bounds, float closer) {
 std::vector<Phase> demo_phases(const Scene& scene) {
   std::vector<Phase> phases;
   const int outer = outer_object(scene);
+  const float scale = scene_scale(scene);
   const std::vector<bool> all(scene.objects.size(), true);
 
   Phase presses{model_name(scene, all), scene, demo_camera(world_bounds(scene), 0.7f), {}};
-  std::vector<PressSlide> sites;
-  for (const glm::vec2 where : {glm::vec2(0.45f, 0.25f), glm::vec2(0.6f, 0.4f), glm::vec2(0.36f, 0.42f)}) {
-    sites.push_back(aim_at_view(scene, outer, presses.camera, where, skin_press(scene_scale(scene))));
-  }
-  presses.script = press_script(sites, 60.0f * scene_scale(scene));
-  presses.probe_radius_mm = 1.5f * scene_scale(scene);
+  const glm::vec2 sites[] = {{0.45f, 0.25f}, {0.6f, 0.4f}, {0.36f, 0.42f}};
+  presses.script = press_script(aim_at_view(scene, outer, presses.camera, sites, skin_press(scale)),
+                                60.0f * scale);
+  presses.probe_radius_mm = 1.5f * scale;
   phases.push_back(std::move(presses));
 
   const int inner = largest_shown_inner(scene, outer);
@@ -129,10 +128,10 @@ std::vector<Phase> demo_phases(const Scene& scene) {
     Scene inside = with_shown(scene, shown);
     Phase slide{model_name(scene, shown), inside, demo_camera(world_bounds(scene.objects[std::size_t(inner)]), 0.45f), {}};
     // Along the smooth gyrus beside the fissure, then across the sulci at its end.
-    SurfaceSlide spec = brain_slide(50.0f, 20.0f, scene_scale(scene));
+    SurfaceSlide spec = brain_slide(50.0f, 20.0f, scale);
     spec.screen_direction = {0.35f, -1.0f};
     slide.script = surface_slide_script(inside, inner, slide.camera, {0.6f, 0.2f}, spec);
-    slide.probe_radius_mm = 1.5f * scene_scale(scene);
+    slide.probe_radius_mm = 1.5f * scale;
     phases.push_back(std::move(slide));
   }
   return phases;
@@ -141,6 +140,7 @@ std::vector<Phase> demo_phases(const Scene& scene) {
 std::vector<Phase> table1_phases(const Scene& scene, double seconds) {
   const int outer = outer_object(scene);
   const int inner = largest_shown_inner(scene, outer);
+  const float scale = scene_scale(scene);
   std::vector<std::vector<bool>> rows;
   if (inner >= 0) {
     std::vector<bool> inner_only(scene.objects.size(), false), outer_only(scene.objects.size(), false);
@@ -157,8 +157,8 @@ std::vector<Phase> table1_phases(const Scene& scene, double seconds) {
     Phase phase{model_name(scene, shown), visible, demo_camera(shown_bounds(visible)), {}};
     // Slow enough that the probe stays in contact for the whole measured stretch.
     phase.script = surface_slide_script(visible, touched, phase.camera, {0.45f, 0.4f},
-                                        brain_slide(60.0f, float(60.0 / std::max(1.0, seconds)), scene_scale(scene)));
-    phase.probe_radius_mm = 1.5f * scene_scale(scene);
+                                        brain_slide(60.0f, float(60.0 / std::max(1.0, seconds)), scale));
+    phase.probe_radius_mm = 1.5f * scale;
     phases.push_back(std::move(phase));
   }
   return phases;

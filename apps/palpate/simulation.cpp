@@ -142,21 +142,26 @@ ProbeScript surface_slide_script(const Scene& scene, int object_index, const Orb
   return ProbeScript{SampledPath(std::move(samples)), {{0.0, end, true}}};
 }
 
-PressSlide aim_at_view(const Scene& scene, int object_index, const OrbitCamera& camera, glm::vec2 where,
-                       const PressSlide& spec) {
-  const OrbitCamera::Ray ray = view_ray(camera, where);
-  const BvhHit hit = ObjectCaster(scene, object_index).cast(ray.origin, ray.origin + ray.direction * camera.distance_mm * 4.0f);
+std::vector<PressSlide> aim_at_view(const Scene& scene, int object_index, const OrbitCamera& camera,
+                                    std::span<const glm::vec2> sites, const PressSlide& spec) {
+  const ObjectCaster caster(scene, object_index);
   const SceneObject& object = scene.objects[std::size_t(object_index)];
-  if (!hit.hit()) throw Error(missed(scene, object_index, where));
-  // The hit triangle's vertex nearest the hit, in the object's frame.
   const glm::mat4 to_object = glm::inverse(object.transform);
-  const glm::vec3 local = glm::vec3(to_object * glm::vec4(hit.point, 1.0f));
-  std::size_t nearest = object.mesh.indices[std::size_t(hit.triangle) * 3];
-  for (int k = 1; k < 3; ++k) {
-    const std::size_t v = object.mesh.indices[std::size_t(hit.triangle) * 3 + std::size_t(k)];
-    if (glm::distance(object.mesh.positions[v], local) < glm::distance(object.mesh.positions[nearest], local)) nearest = v;
+  std::vector<PressSlide> presses;
+  for (const glm::vec2 where : sites) {
+    const OrbitCamera::Ray ray = view_ray(camera, where);
+    const BvhHit hit = caster.cast(ray.origin, ray.origin + ray.direction * camera.distance_mm * 4.0f);
+    if (!hit.hit()) throw Error(missed(scene, object_index, where));
+    // The hit triangle's vertex nearest the hit, in the object's frame.
+    const glm::vec3 local = glm::vec3(to_object * glm::vec4(hit.point, 1.0f));
+    std::size_t nearest = object.mesh.indices[std::size_t(hit.triangle) * 3];
+    for (int k = 1; k < 3; ++k) {
+      const std::size_t v = object.mesh.indices[std::size_t(hit.triangle) * 3 + std::size_t(k)];
+      if (glm::distance(object.mesh.positions[v], local) < glm::distance(object.mesh.positions[nearest], local)) nearest = v;
+    }
+    presses.push_back(aim_press_slide(object, nearest, camera_right(camera), spec));
   }
-  return aim_press_slide(object, nearest, camera_right(camera), spec);
+  return presses;
 }
 
 PhaseResult run_phase(const Phase& phase, gl::Renderer& renderer, const gl::Framebuffer& framebuffer,

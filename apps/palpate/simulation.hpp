@@ -3,6 +3,7 @@
 // undeformed geometry, and the graphics loop on this thread, which reads the latest contact each frame
 // without blocking the haptic thread and draws the scene deformed. Used by `demo` and `bench table1`.
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -59,11 +60,11 @@ struct SurfaceSlide {
 ProbeScript surface_slide_script(const Scene& scene, int object_index, const OrbitCamera& camera, glm::vec2 where,
                                  const SurfaceSlide& spec);
 
-// A surface point of `object_index` seen from the camera through the viewport position `where`
-// (x, y in [0, 1] from the top left), aimed as a press sliding toward the camera's right.
-// Throws palpate::Error when the ray misses the object.
-PressSlide aim_at_view(const Scene& scene, int object_index, const OrbitCamera& camera, glm::vec2 where,
-                       const PressSlide& spec);
+// Presses at the surface points of `object_index` seen from the camera through the viewport
+// positions `sites` (x, y in [0, 1] from the top left), each sliding toward the camera's right.
+// Throws palpate::Error when a ray misses the object.
+std::vector<PressSlide> aim_at_view(const Scene& scene, int object_index, const OrbitCamera& camera,
+                                    std::span<const glm::vec2> sites, const PressSlide& spec);
 
 struct CapturedFrame {
   int index = 0;             // capture number within the run
