@@ -257,13 +257,11 @@ void print(const Report& report, const Options& options) {
               "53,022: a closed triangle mesh has an even count (each edge joins two triangles, so 3F = 2E).\n");
 }
 
-nlohmann::json to_json(const Percentiles& p) { return {{"p50", p.p50}, {"p99", p.p99}, {"p999", p.p999}, {"max", p.max}}; }
-
 void write_json(const Report& report, const Options& options) {
   nlohmann::json rows = nlohmann::json::array(), builds = nlohmann::json::array(), loops = nlohmann::json::array();
   for (const TickRow& row : report.rows) {
     nlohmann::json r = {{"scenario", row.scenario}, {"mesh", row.mesh},   {"triangles", row.triangles},
-                        {"state", row.state},       {"ticks", row.ticks}, {"tick_us", to_json(row.tick_us)}};
+                        {"state", row.state},       {"ticks", row.ticks}, {"tick_us", percentiles_json(row.tick_us)}};
     if (row.checks) {
       r["checks"] = {{"pop_through_steps", row.checks->pop_through_steps},
                      {"inward_force_steps", row.checks->inward_force_steps},
@@ -287,8 +285,8 @@ void write_json(const Report& report, const Options& options) {
                      {"achieved_hz", row.achieved_hz},
                      {"achieved_hz_last_second", row.achieved_hz_last_second},
                      {"missed", row.missed},
-                     {"period_error_us", to_json(row.period_error_us)},
-                     {"tick_us", to_json(row.tick_us)},
+                     {"period_error_us", percentiles_json(row.period_error_us)},
+                     {"tick_us", percentiles_json(row.tick_us)},
                      {"sched_fifo", row.sched_fifo}});
   }
   const nlohmann::json document = {{"benchmark", "haptics"},

@@ -12,4 +12,8 @@ std::string with_thousands(std::size_t n) {
   return out;
 }
 
+nlohmann::json percentiles_json(const Percentiles& p) {
+  return {{"p50", p.p50}, {"p99", p.p99}, {"p999", p.p999}, {"max", p.max}};
+}
+
 }  // namespace palpate::cli

@@ -14,10 +14,6 @@ nlohmann::json matrix_json(const glm::mat4& m) {
 
 nlohmann::json vec_json(glm::vec3 v) { return {v.x, v.y, v.z}; }
 
-nlohmann::json percentiles_json(const Percentiles& p) {
-  return {{"p50", p.p50}, {"p99", p.p99}, {"p999", p.p999}, {"max", p.max}};
-}
-
 
 }  // namespace
 
