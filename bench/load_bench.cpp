@@ -10,7 +10,8 @@
 namespace {
 
 std::filesystem::path scene_sized_file(const char* extension) {
-  const auto file = std::filesystem::temp_directory_path() / (std::string("palpate_bench_159063") + extension);
+  const auto file =
+      std::filesystem::temp_directory_path() / (std::string("palpate_bench_159063") + extension);
   if (!std::filesystem::exists(file)) palpate::save_mesh(palpate::make_sphere(90.0f, 159063), file);
   return file;
 }

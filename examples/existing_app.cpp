@@ -55,9 +55,12 @@ int main(int argc, char** argv) {
   GLuint vertex_array = 0, buffers[3] = {};
   glCreateVertexArrays(1, &vertex_array);
   glCreateBuffers(3, buffers);
-  glNamedBufferStorage(buffers[0], GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3)), mesh.positions.data(), 0);
-  glNamedBufferStorage(buffers[1], GLsizeiptr(mesh.normals.size() * sizeof(glm::vec3)), mesh.normals.data(), 0);
-  glNamedBufferStorage(buffers[2], GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)), mesh.indices.data(), 0);
+  glNamedBufferStorage(buffers[0], GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3)),
+                       mesh.positions.data(), 0);
+  glNamedBufferStorage(buffers[1], GLsizeiptr(mesh.normals.size() * sizeof(glm::vec3)), mesh.normals.data(),
+                       0);
+  glNamedBufferStorage(buffers[2], GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
+                       mesh.indices.data(), 0);
   for (GLuint attribute = 0; attribute < 2; ++attribute) {
     glVertexArrayVertexBuffer(vertex_array, attribute, buffers[attribute], 0, sizeof(glm::vec3));
     glEnableVertexArrayAttrib(vertex_array, attribute);
@@ -67,8 +70,9 @@ int main(int argc, char** argv) {
   glVertexArrayElementBuffer(vertex_array, buffers[2]);
   const palpate::gl::ShaderProgram program("existing app", vertex_source, fragment_source);
 
-  const glm::mat4 view_projection = glm::perspective(glm::radians(40.0f), float(width) / float(height), 10.0f, 500.0f) *
-                                    glm::lookAt(glm::vec3(0, -170, 40), glm::vec3(0), glm::vec3(0, 0, 1));
+  const glm::mat4 view_projection =
+      glm::perspective(glm::radians(40.0f), float(width) / float(height), 10.0f, 500.0f) *
+      glm::lookAt(glm::vec3(0, -170, 40), glm::vec3(0), glm::vec3(0, 0, 1));
   const auto draw_frame = [&](double time_s) {
     glEnable(GL_DEPTH_TEST);
     glEnable(GL_CULL_FACE);

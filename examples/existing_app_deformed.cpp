@@ -60,9 +60,12 @@ int main(int argc, char** argv) {
   GLuint vertex_array = 0, buffers[3] = {};
   glCreateVertexArrays(1, &vertex_array);
   glCreateBuffers(3, buffers);
-  glNamedBufferStorage(buffers[0], GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3)), mesh.positions.data(), 0);
-  glNamedBufferStorage(buffers[1], GLsizeiptr(mesh.normals.size() * sizeof(glm::vec3)), mesh.normals.data(), 0);
-  glNamedBufferStorage(buffers[2], GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)), mesh.indices.data(), 0);
+  glNamedBufferStorage(buffers[0], GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3)),
+                       mesh.positions.data(), 0);
+  glNamedBufferStorage(buffers[1], GLsizeiptr(mesh.normals.size() * sizeof(glm::vec3)), mesh.normals.data(),
+                       0);
+  glNamedBufferStorage(buffers[2], GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),
+                       mesh.indices.data(), 0);
   for (GLuint attribute = 0; attribute < 2; ++attribute) {
     glVertexArrayVertexBuffer(vertex_array, attribute, buffers[attribute], 0, sizeof(glm::vec3));
     glEnableVertexArrayAttrib(vertex_array, attribute);
@@ -75,16 +78,18 @@ int main(int argc, char** argv) {
   palpate::gl::DeformBlock dent_block;
   dent_block.attach(program.id());
 
-  const glm::mat4 view_projection = glm::perspective(glm::radians(40.0f), float(width) / float(height), 10.0f, 500.0f) *
-                                    glm::lookAt(glm::vec3(0, -170, 40), glm::vec3(0), glm::vec3(0, 0, 1));
+  const glm::mat4 view_projection =
+      glm::perspective(glm::radians(40.0f), float(width) / float(height), 10.0f, 500.0f) *
+      glm::lookAt(glm::vec3(0, -170, 40), glm::vec3(0), glm::vec3(0, 0, 1));
   const auto draw_frame = [&](double time_s) {
     glEnable(GL_DEPTH_TEST);
     glEnable(GL_CULL_FACE);
     glClearColor(0.1f, 0.1f, 0.12f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const glm::mat4 model = glm::rotate(glm::mat4(1.0f), float(0.3 * time_s), glm::vec3(0, 0, 1));
-    const palpate::Dent dent{glm::normalize(glm::vec3(0.2f, -1.0f, 0.35f)) * 50.0f,  // contact point facing the camera
-                             float(3.0 + 2.0 * std::cos(time_s)), 7.0f};              // depth 1..5 mm, sigma 7 mm
+    const palpate::Dent dent{
+        glm::normalize(glm::vec3(0.2f, -1.0f, 0.35f)) * 50.0f,  // contact point facing the camera
+        float(3.0 + 2.0 * std::cos(time_s)), 7.0f};             // depth 1..5 mm, sigma 7 mm
     dent_block.update({&dent, 1});
     dent_block.bind();
     glUseProgram(program.id());

@@ -6,12 +6,11 @@
 #include <cstdio>
 #include <fstream>
 #include <memory>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <thread>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "commands.hpp"
 #include "cpu_burner.hpp"
@@ -82,18 +81,25 @@ Prepared prepare(Scene scene, const std::string& name, Report& report) {
   Bvh bvh = Bvh::build(scene);
   const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
   const std::size_t triangles = bvh.triangle_count();
-  report.builds.push_back({name, triangles, seconds, double(bvh.memory_bytes()) / double(std::max<std::size_t>(triangles, 1))});
+  report.builds.push_back(
+      {name, triangles, seconds, double(bvh.memory_bytes()) / double(std::max<std::size_t>(triangles, 1))});
   return {std::move(scene), std::move(bvh)};
 }
 
-void add_rows(const std::string& scenario, const std::string& mesh, std::size_t triangles, ScenarioResult result,
-              bool keep_free, bool keep_contact, Report& report) {
+void add_rows(const std::string& scenario, const std::string& mesh, std::size_t triangles,
+              ScenarioResult result, bool keep_free, bool keep_contact, Report& report) {
   if (keep_free) {
-    report.rows.push_back({scenario, mesh, triangles, "free", result.free_tick_us.size(), percentiles(result.free_tick_us), {}});
+    report.rows.push_back({scenario,
+                           mesh,
+                           triangles,
+                           "free",
+                           result.free_tick_us.size(),
+                           percentiles(result.free_tick_us),
+                           {}});
   }
   if (keep_contact) {
-    report.rows.push_back(
-        {scenario, mesh, triangles, "contact", result.contact_tick_us.size(), percentiles(result.contact_tick_us), result.checks});
+    report.rows.push_back({scenario, mesh, triangles, "contact", result.contact_tick_us.size(),
+                           percentiles(result.contact_tick_us), result.checks});
   }
 }
 
@@ -124,18 +130,20 @@ void bench_table1(const Options& options, Report& report) {
   CycleShape hover = press;
   hover.press_depth_mm = -3.0f;  // 2 to 4 mm above the surface
   hover.depth_amplitude_mm = 1.0f;
-  for (const Case& c : {Case{"brain", true, false}, Case{"skin", false, true}, Case{"brain+skin", true, true}}) {
+  for (const Case& c :
+       {Case{"brain", true, false}, Case{"skin", false, true}, Case{"brain+skin", true, true}}) {
     progress("Table I mesh " + c.name);
     const Prepared prepared = prepare(table1_scene(c.brain, c.skin), c.name, report);
     const std::size_t touched = prepared.scene.objects.size() - 1;  // the skin when both
     const std::size_t triangles = prepared.bvh.triangle_count();
     const MeshReference reference(prepared.scene);
     add_rows("hover", c.name, triangles,
-             run_cycles(prepared.scene, prepared.bvh, aimed_cycles(prepared.scene, touched, hover, &reference), 1e3f, nullptr),
+             run_cycles(prepared.scene, prepared.bvh,
+                        aimed_cycles(prepared.scene, touched, hover, &reference), 1e3f, nullptr),
              true, false, report);
     add_rows("press-slide", c.name, triangles,
-             run_cycles(prepared.scene, prepared.bvh, aimed_cycles(prepared.scene, touched, press, &reference), 1e3f,
-                        &reference),
+             run_cycles(prepared.scene, prepared.bvh,
+                        aimed_cycles(prepared.scene, touched, press, &reference), 1e3f, &reference),
              false, true, report);
   }
 }
@@ -158,15 +166,16 @@ void bench_sphere_slide(const Options& options, Report& report) {
     const Prepared prepared = prepare(std::move(scene), name, report);
     const std::size_t triangles = prepared.bvh.triangle_count();
     const CycleShape slide{.cycles = 50, .seed = options.seed};
-    add_rows("sphere-slide", name, triangles,
-             run_cycles(prepared.scene, prepared.bvh, sphere_slide_cycles(reference, slide), 1e3f, &reference), false,
-             true, report);
+    add_rows(
+        "sphere-slide", name, triangles,
+        run_cycles(prepared.scene, prepared.bvh, sphere_slide_cycles(reference, slide), 1e3f, &reference),
+        false, true, report);
     CycleShape hover{.cycles = 10, .seed = options.seed + 1};
     hover.press_depth_mm = -3.0f;
     hover.depth_amplitude_mm = 1.0f;
     add_rows("sphere-hover", name, triangles,
-             run_cycles(prepared.scene, prepared.bvh, sphere_slide_cycles(reference, hover), 1e3f, nullptr), true, false,
-             report);
+             run_cycles(prepared.scene, prepared.bvh, sphere_slide_cycles(reference, hover), 1e3f, nullptr),
+             true, false, report);
   }
 }
 
@@ -211,8 +220,8 @@ void bench_loops(const Options& options, Report& report) {
   if (!options.quick) rates.push_back(10'000.0);
   for (const double rate : rates) {
     for (const bool loaded : {false, true}) {
-      progress(std::to_string(int(rate)) + " Hz, " + (loaded ? "loaded by 2 spinning processes" : "idle") + ", " +
-               std::to_string(int(seconds)) + " s");
+      progress(std::to_string(int(rate)) + " Hz, " + (loaded ? "loaded by 2 spinning processes" : "idle") +
+               ", " + std::to_string(int(seconds)) + " s");
       report.loops.push_back(run_loop(prepared, rate, loaded, seconds, options.seed));
     }
   }
@@ -220,48 +229,60 @@ void bench_loops(const Options& options, Report& report) {
 
 void print(const Report& report, const Options& options) {
   std::printf("palpate bench haptics%s\n\n", options.quick ? " --quick" : "");
-  std::printf("Tick cost (device read, proxy step on the BVH, spring-damper, device write), simulated 1 ms ticks, us\n");
-  std::printf("%-13s %-21s %11s %-8s %8s %7s %7s %7s %8s | %5s %6s %6s %5s %7s\n", "scenario", "mesh", "triangles", "state",
-              "ticks", "p50", "p99", "p99.9", "max", "pop", "inward", "inside", "stuck", "max N");
+  std::printf(
+      "Tick cost (device read, proxy step on the BVH, spring-damper, device write), simulated 1 ms ticks, "
+      "us\n");
+  std::printf("%-13s %-21s %11s %-8s %8s %7s %7s %7s %8s | %5s %6s %6s %5s %7s\n", "scenario", "mesh",
+              "triangles", "state", "ticks", "p50", "p99", "p99.9", "max", "pop", "inward", "inside", "stuck",
+              "max N");
   for (const TickRow& row : report.rows) {
     std::printf("%-13s %-21s %11s %-8s %8zu %7.2f %7.2f %7.2f %8.2f", row.scenario.c_str(), row.mesh.c_str(),
-                with_thousands(row.triangles).c_str(), row.state.c_str(), row.ticks, row.tick_us.p50, row.tick_us.p99,
-                row.tick_us.p999, row.tick_us.max);
+                with_thousands(row.triangles).c_str(), row.state.c_str(), row.ticks, row.tick_us.p50,
+                row.tick_us.p99, row.tick_us.p999, row.tick_us.max);
     if (row.checks) {
       std::printf(" | %5llu %6llu %6llu %5llu %7.2f\n", (unsigned long long)row.checks->pop_through_steps,
-                  (unsigned long long)row.checks->inward_force_steps, (unsigned long long)row.checks->proxy_inside_steps,
+                  (unsigned long long)row.checks->inward_force_steps,
+                  (unsigned long long)row.checks->proxy_inside_steps,
                   (unsigned long long)row.checks->stuck_cycles, row.checks->max_force_n);
     } else {
       std::printf(" |\n");
     }
   }
-  std::printf("\nBVH build\n%-21s %11s %9s %15s %16s\n", "mesh", "triangles", "seconds", "bytes/triangle", "ms per 1M tris");
+  std::printf("\nBVH build\n%-21s %11s %9s %15s %16s\n", "mesh", "triangles", "seconds", "bytes/triangle",
+              "ms per 1M tris");
   for (const BuildRow& row : report.builds) {
-    std::printf("%-21s %11s %9.3f %15.1f %16.1f\n", row.mesh.c_str(), with_thousands(row.triangles).c_str(), row.seconds,
-                row.bytes_per_triangle, row.seconds * 1e3 / (double(row.triangles) * 1e-6));
+    std::printf("%-21s %11s %9.3f %15.1f %16.1f\n", row.mesh.c_str(), with_thousands(row.triangles).c_str(),
+                row.seconds, row.bytes_per_triangle, row.seconds * 1e3 / (double(row.triangles) * 1e-6));
   }
   std::printf("\nHaptic thread (Table I scene, scripted press-slide)\n");
-  std::printf("%9s %-7s %7s %10s %10s %7s | %-33s | %8s %5s\n", "target Hz", "load", "seconds", "achieved", "last 1 s",
-              "missed", "period error us p50/p99/p99.9/max", "tick p999", "FIFO");
+  std::printf("%9s %-7s %7s %10s %10s %7s | %-33s | %8s %5s\n", "target Hz", "load", "seconds", "achieved",
+              "last 1 s", "missed", "period error us p50/p99/p99.9/max", "tick p999", "FIFO");
   for (const LoopRow& row : report.loops) {
-    std::printf("%9.0f %-7s %7.2f %10.1f %10.1f %7llu | %7.2f %7.2f %8.2f %8.2f | %8.2f %5s\n", row.target_hz, row.load.c_str(),
-                row.seconds, row.achieved_hz, row.achieved_hz_last_second, (unsigned long long)row.missed,
-                row.period_error_us.p50, row.period_error_us.p99, row.period_error_us.p999, row.period_error_us.max,
-                row.tick_us.p999, row.sched_fifo ? "yes" : "no");
+    std::printf("%9.0f %-7s %7.2f %10.1f %10.1f %7llu | %7.2f %7.2f %8.2f %8.2f | %8.2f %5s\n", row.target_hz,
+                row.load.c_str(), row.seconds, row.achieved_hz, row.achieved_hz_last_second,
+                (unsigned long long)row.missed, row.period_error_us.p50, row.period_error_us.p99,
+                row.period_error_us.p999, row.period_error_us.max, row.tick_us.p999,
+                row.sched_fifo ? "yes" : "no");
   }
-  std::printf("\npop: steps with the tip > 0.5 mm inside and no force; inward: steps with the tip > 0.2 mm inside and the\n"
-              "force pointing inward; inside: steps with the proxy > 0.5 mm inside; stuck: cycles where the proxy, in\n"
-              "contact, trailed the tip by more than 1 mm beyond the tip's depth. Inside is measured on the bumpy sphere's\n"
-              "implicit surface or, on other meshes, by a grid of the mesh's triangles (ray parity and nearest\n"
-              "triangle), independent of the BVH and the proxy. sphere-slide asks for 53,021 triangles and gets\n"
-              "53,022: a closed triangle mesh has an even count (each edge joins two triangles, so 3F = 2E).\n");
+  std::printf(
+      "\npop: steps with the tip > 0.5 mm inside and no force; inward: steps with the tip > 0.2 mm inside "
+      "and the\n"
+      "force pointing inward; inside: steps with the proxy > 0.5 mm inside; stuck: cycles where the proxy, "
+      "in\n"
+      "contact, trailed the tip by more than 1 mm beyond the tip's depth. Inside is measured on the bumpy "
+      "sphere's\n"
+      "implicit surface or, on other meshes, by a grid of the mesh's triangles (ray parity and nearest\n"
+      "triangle), independent of the BVH and the proxy. sphere-slide asks for 53,021 triangles and gets\n"
+      "53,022: a closed triangle mesh has an even count (each edge joins two triangles, so 3F = 2E).\n");
 }
 
 void write_json(const Report& report, const Options& options) {
-  nlohmann::json rows = nlohmann::json::array(), builds = nlohmann::json::array(), loops = nlohmann::json::array();
+  nlohmann::json rows = nlohmann::json::array(), builds = nlohmann::json::array(),
+                 loops = nlohmann::json::array();
   for (const TickRow& row : report.rows) {
-    nlohmann::json r = {{"scenario", row.scenario}, {"mesh", row.mesh},   {"triangles", row.triangles},
-                        {"state", row.state},       {"ticks", row.ticks}, {"tick_us", percentiles_json(row.tick_us)}};
+    nlohmann::json r = {{"scenario", row.scenario},   {"mesh", row.mesh},
+                        {"triangles", row.triangles}, {"state", row.state},
+                        {"ticks", row.ticks},         {"tick_us", percentiles_json(row.tick_us)}};
     if (row.checks) {
       r["checks"] = {{"pop_through_steps", row.checks->pop_through_steps},
                      {"inward_force_steps", row.checks->inward_force_steps},
@@ -289,13 +310,11 @@ void write_json(const Report& report, const Options& options) {
                      {"tick_us", percentiles_json(row.tick_us)},
                      {"sched_fifo", row.sched_fifo}});
   }
-  const nlohmann::json document = {{"benchmark", "haptics"},
-                                   {"quick", options.quick},
-                                   {"seed", options.seed},
-                                   {"hardware_threads", std::thread::hardware_concurrency()},
-                                   {"rows", rows},
-                                   {"build", builds},
-                                   {"loop", loops}};
+  const nlohmann::json document = {
+      {"benchmark", "haptics"}, {"quick", options.quick},
+      {"seed", options.seed},   {"hardware_threads", std::thread::hardware_concurrency()},
+      {"rows", rows},           {"build", builds},
+      {"loop", loops}};
   std::ofstream out(options.json);
   if (!out) throw Error(options.json, 0, "cannot write the JSON report");
   out << document.dump(2) << '\n';
@@ -319,10 +338,12 @@ void add_bench_haptics_command(CLI::App& app) {
   auto options = std::make_shared<Options>();
   CLI::App* haptics = add_bench_command(app).add_subcommand(
       "haptics", "Tick cost, sphere-slide correctness, BVH build, haptic thread rate and jitter");
-  haptics->add_flag("--quick", options->quick,
-                    "Reduced set: Table I meshes, sphere-slide at 22,952 and 53,022 triangles, 1 kHz loop for 3 s");
+  haptics->add_flag(
+      "--quick", options->quick,
+      "Reduced set: Table I meshes, sphere-slide at 22,952 and 53,022 triangles, 1 kHz loop for 3 s");
   haptics->add_option("--json", options->json, "Also write the results to this JSON file");
-  haptics->add_option("--seed", options->seed, "Seed of the random surface points and directions")->capture_default_str();
+  haptics->add_option("--seed", options->seed, "Seed of the random surface points and directions")
+      ->capture_default_str();
   on_selected(haptics, [options] { return bench_haptics(*options); });
 }
 

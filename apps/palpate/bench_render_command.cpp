@@ -84,11 +84,20 @@ std::vector<BenchMesh> bench_meshes(bool quick) {
   std::vector<BenchMesh> meshes{
       {"brain", [] { return Scene{{phantom("brain")}}; }},
       {"skin", [] { return Scene{{phantom("skin")}}; }},
-      {"both", [] { return Scene{{phantom("skin"), phantom("brain")}}; }},
+      {"both",
+       [] {
+         return Scene{{phantom("skin"), phantom("brain")}};
+       }},
   };
   if (!quick) {
-    meshes.push_back({"1M", [] { return Scene{{object("sphere 1M", make_sphere(100.0f, 1'000'000), 8.0f, {0.8f, 0.7f, 0.65f})}}; }});
-    meshes.push_back({"10M", [] { return Scene{{object("sphere 10M", make_sphere(100.0f, 10'000'000), 8.0f, {0.8f, 0.7f, 0.65f})}}; }});
+    meshes.push_back(
+        {"1M", [] {
+           return Scene{{object("sphere 1M", make_sphere(100.0f, 1'000'000), 8.0f, {0.8f, 0.7f, 0.65f})}};
+         }});
+    meshes.push_back(
+        {"10M", [] {
+           return Scene{{object("sphere 10M", make_sphere(100.0f, 10'000'000), 8.0f, {0.8f, 0.7f, 0.65f})}};
+         }});
   }
   return meshes;
 }
@@ -119,11 +128,13 @@ Camera frame_scene(const Scene& scene, int width, int height) {
 Contact visible_contact(const Scene& scene, const Camera& camera) {
   const SceneObject& touched = scene.objects.front();
   const glm::vec3 center = world_bounds(scene).center();
-  const glm::vec3 toward = glm::normalize(camera.eye - center + glm::vec3(0.1f, 0.0f, 0.12f) * glm::length(camera.eye - center));
+  const glm::vec3 toward =
+      glm::normalize(camera.eye - center + glm::vec3(0.1f, 0.0f, 0.12f) * glm::length(camera.eye - center));
   std::size_t best = 0;
   float best_reach = -1e30f;
   for (std::size_t i = 0; i < touched.mesh.vertex_count(); ++i) {
-    const float reach = glm::dot(glm::vec3(touched.transform * glm::vec4(touched.mesh.positions[i], 1.0f)) - center, toward);
+    const float reach =
+        glm::dot(glm::vec3(touched.transform * glm::vec4(touched.mesh.positions[i], 1.0f)) - center, toward);
     if (reach > best_reach) best_reach = reach, best = i;
   }
   Contact contact;
@@ -162,7 +173,6 @@ struct Row {
   int frames = 0;
 };
 
-
 int bench_render(const BenchOptions& options) {
   const double seconds = options.seconds > 0.0 ? options.seconds : (options.quick ? 2.0 : 3.0);
   constexpr int rounds = 6;
@@ -172,8 +182,8 @@ int bench_render(const BenchOptions& options) {
   const gl::Framebuffer target({options.width, options.height});
   GLuint query = 0;
   glGenQueries(1, &query);
-  std::printf("palpate bench render: %s (%s), %dx%d, %.1f s per variant in %d interleaved rounds\n", device.c_str(),
-              context.platform().c_str(), options.width, options.height, seconds, rounds);
+  std::printf("palpate bench render: %s (%s), %dx%d, %.1f s per variant in %d interleaved rounds\n",
+              device.c_str(), context.platform().c_str(), options.width, options.height, seconds, rounds);
   if (!timed) std::printf("  GPU timer queries do not time a software rasterizer: gpu_ms is null\n");
   if (!options.frames.empty()) std::filesystem::create_directories(options.frames);
 
@@ -194,7 +204,8 @@ int bench_render(const BenchOptions& options) {
       renderer.emplace();
       renderer->upload(scene);
     }
-    std::printf(" %s vertices, %s triangles\n", with_thousands(vertices).c_str(), with_thousands(triangles).c_str());
+    std::printf(" %s vertices, %s triangles\n", with_thousands(vertices).c_str(),
+                with_thousands(triangles).c_str());
 
     const auto frame = [&](const Variant& variant) {
       gl::DrawOptions draw;
@@ -241,24 +252,32 @@ int bench_render(const BenchOptions& options) {
     }
     for (std::size_t v = 0; v < std::size(variants); ++v) {
       const Tally& tally = tallies[v];
-      Row row{bench_mesh.name, vertices, triangles, variants[v].name, tally.frames / tally.wall_s,
-              1000.0 * tally.cpu_s / tally.frames, std::nullopt, tally.frames};
+      Row row{bench_mesh.name,
+              vertices,
+              triangles,
+              variants[v].name,
+              tally.frames / tally.wall_s,
+              1000.0 * tally.cpu_s / tally.frames,
+              std::nullopt,
+              tally.frames};
       if (timed) row.gpu_ms = 1e-6 * tally.gpu_ns / tally.frames;
       rows.push_back(row);
     }
   }
   glDeleteQueries(1, &query);
 
-  std::printf("\n%-6s %11s %11s  %-16s %9s %9s %9s %7s  %s\n", "mesh", "vertices", "triangles", "variant", "fps",
-              "gpu ms", "cpu ms", "frames", "vs plain");
+  std::printf("\n%-6s %11s %11s  %-16s %9s %9s %9s %7s  %s\n", "mesh", "vertices", "triangles", "variant",
+              "fps", "gpu ms", "cpu ms", "frames", "vs plain");
   for (const Row& row : rows) {
-    const auto plain = std::find_if(rows.begin(), rows.end(),
-                                    [&](const Row& r) { return r.mesh == row.mesh && r.variant == std::string("plain"); });
+    const auto plain = std::find_if(rows.begin(), rows.end(), [&](const Row& r) {
+      return r.mesh == row.mesh && r.variant == std::string("plain");
+    });
     char gpu[16] = "null";
     if (row.gpu_ms) std::snprintf(gpu, sizeof gpu, "%.3f", *row.gpu_ms);
     std::printf("%-6s %11s %11s  %-16s %9.1f %9s %9.2f %7d  %+.1f%%\n", row.mesh.c_str(),
-                with_thousands(row.vertices).c_str(), with_thousands(row.triangles).c_str(), row.variant.c_str(), row.fps,
-                gpu, row.cpu_ms, row.frames, 100.0 * (plain->fps / row.fps - 1.0));
+                with_thousands(row.vertices).c_str(), with_thousands(row.triangles).c_str(),
+                row.variant.c_str(), row.fps, gpu, row.cpu_ms, row.frames,
+                100.0 * (plain->fps / row.fps - 1.0));
   }
   std::printf("(vs plain: extra time per frame; cpu ms: process CPU time per frame, all threads)\n");
 
@@ -293,14 +312,18 @@ int bench_render(const BenchOptions& options) {
 void add_bench_render_command(CLI::App& app) {
   auto options = std::make_shared<BenchOptions>();
   CLI::App* render = add_bench_command(app).add_subcommand(
-      "render", "Deforming render vs plain vs CPU-naive, headless, on the Table I meshes and 1M/10M vertices");
+      "render",
+      "Deforming render vs plain vs CPU-naive, headless, on the Table I meshes and 1M/10M vertices");
   render->add_flag("--quick", options->quick, "Table I meshes only, 2 s per variant");
-  render->add_option("--seconds", options->seconds, "Seconds per variant and mesh (default 2 with --quick, else 3)")
+  render
+      ->add_option("--seconds", options->seconds,
+                   "Seconds per variant and mesh (default 2 with --quick, else 3)")
       ->check(CLI::PositiveNumber);
   render->add_option("--width", options->width, "Framebuffer width")->check(CLI::Range(16, 16384));
   render->add_option("--height", options->height, "Framebuffer height")->check(CLI::Range(16, 16384));
   render->add_option("--json", options->json, "Write the results as JSON to this file");
-  render->add_option("--frames", options->frames, "Save one deformed frame of each mesh as PNG into this folder");
+  render->add_option("--frames", options->frames,
+                     "Save one deformed frame of each mesh as PNG into this folder");
   on_selected(render, [options] { return bench_render(*options); });
 }
 

@@ -25,25 +25,28 @@ struct Table1Options {
   int width = 1280, height = 1024;
 };
 
-void print_markdown(const std::string& device, const Table1Options& options, const std::vector<PhaseResult>& gpu,
-                    const std::vector<PhaseResult>& naive) {
-  std::printf("\nTable I, this run: %s, %dx%d, %.0f s a row in contact\n\n", device.c_str(), options.width, options.height,
-              options.seconds);
-  std::printf("| 3D model | vertices | faces | graphics fps | haptics Hz | contact age p50 / p99 ms | CPU-naive fps | GPU / CPU-naive |\n");
+void print_markdown(const std::string& device, const Table1Options& options,
+                    const std::vector<PhaseResult>& gpu, const std::vector<PhaseResult>& naive) {
+  std::printf("\nTable I, this run: %s, %dx%d, %.0f s a row in contact\n\n", device.c_str(), options.width,
+              options.height, options.seconds);
+  std::printf(
+      "| 3D model | vertices | faces | graphics fps | haptics Hz | contact age p50 / p99 ms | CPU-naive fps "
+      "| GPU / CPU-naive |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
   for (std::size_t i = 0; i < gpu.size(); ++i) {
     const PhaseResult& r = gpu[i];
     std::printf("| %s | %s | %s | %.1f | %.1f | %.2f / %.2f | %.1f | %.2fx |\n", r.model.c_str(),
-                with_thousands(r.vertices).c_str(), with_thousands(r.faces).c_str(), r.graphics_fps, r.haptics_hz,
-                r.contact_age_ms.p50, r.contact_age_ms.p99, naive[i].graphics_fps,
+                with_thousands(r.vertices).c_str(), with_thousands(r.faces).c_str(), r.graphics_fps,
+                r.haptics_hz, r.contact_age_ms.p50, r.contact_age_ms.p99, naive[i].graphics_fps,
                 naive[i].graphics_fps > 0 ? r.graphics_fps / naive[i].graphics_fps : 0.0);
   }
-  std::printf("\nHaptic thread during each GPU row: missed deadlines, period error p50 / p99 / p99.9 / max us\n\n");
+  std::printf(
+      "\nHaptic thread during each GPU row: missed deadlines, period error p50 / p99 / p99.9 / max us\n\n");
   for (const PhaseResult& r : gpu) {
     std::printf("- %s: %llu ticks, %llu missed, %.1f / %.1f / %.1f / %.1f us\n", r.model.c_str(),
-                static_cast<unsigned long long>(r.haptics.ticks), static_cast<unsigned long long>(r.haptics.missed_deadlines),
-                r.haptics.period_error_us.p50, r.haptics.period_error_us.p99, r.haptics.period_error_us.p999,
-                r.haptics.period_error_us.max);
+                static_cast<unsigned long long>(r.haptics.ticks),
+                static_cast<unsigned long long>(r.haptics.missed_deadlines), r.haptics.period_error_us.p50,
+                r.haptics.period_error_us.p99, r.haptics.period_error_us.p999, r.haptics.period_error_us.max);
   }
 }
 
@@ -76,7 +79,8 @@ std::filesystem::path plot_run(const std::string& file, const std::vector<PhaseR
 int bench_table1(const Table1Options& options) {
   const Scene scene = options.scene_file.empty() ? default_scene() : load_scene(options.scene_file);
   GlSession session = open_gl(options.headless, options.width, options.height, "palpate bench table1");
-  gl::Framebuffer framebuffer({.width = options.width, .height = options.height, .color = gl::ColorFormat::rgba8, .samples = 0});
+  gl::Framebuffer framebuffer(
+      {.width = options.width, .height = options.height, .color = gl::ColorFormat::rgba8, .samples = 0});
   gl::Renderer renderer;
   const std::vector<Phase> phases = table1_phases(scene, options.seconds);
   std::vector<PhaseResult> gpu, naive;
@@ -88,7 +92,8 @@ int bench_table1(const Table1Options& options) {
       run.deformation = deformation;
       run.max_seconds = options.seconds;
       run.window = session.window.get();
-      (deformation == gl::Deformation::gpu ? gpu : naive).push_back(run_phase(phase, renderer, framebuffer, run));
+      (deformation == gl::Deformation::gpu ? gpu : naive)
+          .push_back(run_phase(phase, renderer, framebuffer, run));
     }
   }
   print_markdown(session.renderer, options, gpu, naive);
@@ -108,18 +113,27 @@ int bench_table1(const Table1Options& options) {
 void add_bench_table1_command(CLI::App& app) {
   auto options = std::make_shared<Table1Options>();
   CLI::App* table1 = add_bench_command(app).add_subcommand(
-      "table1", "The paper's Table I: graphics fps and haptic Hz together, in contact, with the CPU-naive baseline");
-  table1->add_option("--scene", options->scene_file, "Scene file (TOML); default: the built-in brain and skin phantoms")
+      "table1",
+      "The paper's Table I: graphics fps and haptic Hz together, in contact, with the CPU-naive baseline");
+  table1
+      ->add_option("--scene", options->scene_file,
+                   "Scene file (TOML); default: the built-in brain and skin phantoms")
       ->check(CLI::ExistingFile);
   table1->add_option("--seconds", options->seconds, "Seconds of contact for each row and renderer")
       ->capture_default_str()
       ->check(CLI::Range(0.5, 600.0));
   table1->add_option("--json", options->json, "Also write the results to this JSON file");
-  table1->add_option("--plot", options->plot, "Plot file, without extension (PNG through gnuplot, else SVG); '' for none")
+  table1
+      ->add_option("--plot", options->plot,
+                   "Plot file, without extension (PNG through gnuplot, else SVG); '' for none")
       ->capture_default_str();
   table1->add_flag("--headless", options->headless, "Render through EGL even when there is a display");
-  table1->add_option("--width", options->width, "Frame width")->capture_default_str()->check(CLI::Range(64, 8192));
-  table1->add_option("--height", options->height, "Frame height")->capture_default_str()->check(CLI::Range(64, 8192));
+  table1->add_option("--width", options->width, "Frame width")
+      ->capture_default_str()
+      ->check(CLI::Range(64, 8192));
+  table1->add_option("--height", options->height, "Frame height")
+      ->capture_default_str()
+      ->check(CLI::Range(64, 8192));
   on_selected(table1, [options] { return bench_table1(*options); });
 }
 

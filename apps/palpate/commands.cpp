@@ -20,7 +20,9 @@ int run_in(const CLI::App& app) {
 
 }  // namespace
 
-void on_selected(CLI::App* command, std::function<int()> action) { actions()[command] = std::move(action); }
+void on_selected(CLI::App* command, std::function<int()> action) {
+  actions()[command] = std::move(action);
+}
 
 int run_selected(CLI::App& app) {
   const int status = run_in(app);

@@ -30,7 +30,9 @@ CpuBurners::CpuBurners(int count) {
   }
 }
 
-CpuBurners::~CpuBurners() { kill_all(); }
+CpuBurners::~CpuBurners() {
+  kill_all();
+}
 
 void CpuBurners::kill_all() noexcept {
   for (const pid_t pid : children_) kill(pid, SIGKILL);

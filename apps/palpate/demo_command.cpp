@@ -11,9 +11,9 @@
 #include "commands.hpp"
 #include "gl_session.hpp"
 #include "image.hpp"
-#include "probe_scenes.hpp"
 #include "palpate/core/scene_file.hpp"
 #include "palpate/gl/png.hpp"
+#include "probe_scenes.hpp"
 #include "report.hpp"
 
 namespace palpate::cli {
@@ -33,9 +33,10 @@ class FrameWriter {
  public:
   FrameWriter(const std::filesystem::path& out, int width, int height, double fps) : out_(out) {
     if (std::system("command -v ffmpeg >/dev/null 2>&1") == 0) {
-      const std::string command = "ffmpeg -y -loglevel error -f rawvideo -pix_fmt rgba -s " + std::to_string(width) + "x" +
-                                  std::to_string(height) + " -framerate " + std::to_string(fps) +
-                                  " -i - -vf vflip -c:v libx264 -pix_fmt yuv420p '" + (out / "demo.mp4").string() + "'";
+      const std::string command = "ffmpeg -y -loglevel error -f rawvideo -pix_fmt rgba -s " +
+                                  std::to_string(width) + "x" + std::to_string(height) + " -framerate " +
+                                  std::to_string(fps) + " -i - -vf vflip -c:v libx264 -pix_fmt yuv420p '" +
+                                  (out / "demo.mp4").string() + "'";
       ffmpeg_ = popen(command.c_str(), "w");
     }
     if (!ffmpeg_) std::filesystem::create_directories(out / "frames");
@@ -76,8 +77,8 @@ class FrameWriter {
 // slide four frames spread along it. Only these keep their full-size image.
 struct KeySlot {
   int phase = 0, press = 0;
-  double at_time_s = -1.0;   // >= 0: the first frame at or after this time; < 0: the deepest frame
-  int capture = -1;          // which capture fills it, -1 while empty
+  double at_time_s = -1.0;  // >= 0: the first frame at or after this time; < 0: the deepest frame
+  int capture = -1;         // which capture fills it, -1 while empty
   float depth_mm = -1.0f;
   CapturedFrame frame;
   Image full, thumbnail;
@@ -108,7 +109,8 @@ std::vector<KeySlot> plan_key_frames(const std::vector<Phase>& phases) {
         continue;
       }
       const double span = s.end_s - s.start_s;
-      for (int k = 0; k < 4; ++k) slots.push_back(slot_for(p, stroke, s.start_s + span * (0.2 + 0.6 * k / 3.0)));
+      for (int k = 0; k < 4; ++k)
+        slots.push_back(slot_for(p, stroke, s.start_s + span * (0.2 + 0.6 * k / 3.0)));
     }
   }
   if (slots.size() > 9) slots.resize(9);
@@ -122,10 +124,11 @@ int run_demo(const DemoOptions& options) {
   GlSession gl_session = open_gl(options.headless, options.width, options.height, "palpate demo");
   const std::vector<Phase> phases = demo_phases(scene);
   std::printf("palpate demo: %zu objects, %zu vertices; %s on %s; output in %s/\n", scene.objects.size(),
-              scene.vertex_count(), gl_session.window ? "window" : "headless EGL", gl_session.renderer.c_str(),
-              out.string().c_str());
+              scene.vertex_count(), gl_session.window ? "window" : "headless EGL",
+              gl_session.renderer.c_str(), out.string().c_str());
 
-  gl::Framebuffer framebuffer({.width = options.width, .height = options.height, .color = gl::ColorFormat::rgba8, .samples = 0});
+  gl::Framebuffer framebuffer(
+      {.width = options.width, .height = options.height, .color = gl::ColorFormat::rgba8, .samples = 0});
   gl::Renderer renderer;
   FrameWriter writer(out, options.width, options.height, options.video_fps);
   std::vector<KeySlot> slots = plan_key_frames(phases);
@@ -162,7 +165,8 @@ int run_demo(const DemoOptions& options) {
   const std::string frames_at = writer.finish();
 
   std::erase_if(slots, [](const KeySlot& slot) { return slot.capture < 0; });
-  std::sort(slots.begin(), slots.end(), [](const KeySlot& a, const KeySlot& b) { return a.capture < b.capture; });
+  std::sort(slots.begin(), slots.end(),
+            [](const KeySlot& a, const KeySlot& b) { return a.capture < b.capture; });
   nlohmann::json key_json = nlohmann::json::array();
   std::vector<Image> thumbnails;
   for (std::size_t k = 0; k < slots.size(); ++k) {
@@ -182,8 +186,8 @@ int run_demo(const DemoOptions& options) {
   report["key_frames"] = key_json;
   std::ofstream(out / "report.json") << report.dump(2) << "\n";
   print_table1(stdout, gl_session.renderer, options.width, options.height, results, {});
-  std::printf("wrote %s/report.json, %s/contact_sheet.png, %d frames (%s)\n", out.string().c_str(), out.string().c_str(),
-              captured, frames_at.c_str());
+  std::printf("wrote %s/report.json, %s/contact_sheet.png, %d frames (%s)\n", out.string().c_str(),
+              out.string().c_str(), captured, frames_at.c_str());
   return 0;
 }
 
@@ -191,15 +195,22 @@ int run_demo(const DemoOptions& options) {
 
 void add_demo_command(CLI::App& app) {
   auto options = std::make_shared<DemoOptions>();
-  CLI::App* demo = app.add_subcommand("demo", "The headless (or windowed) demo: a probe presses the skin, then slides on the brain");
-  demo->add_option("--scene", options->scene_file, "Scene file (TOML); default: the built-in brain and skin phantoms")
+  CLI::App* demo = app.add_subcommand(
+      "demo", "The headless (or windowed) demo: a probe presses the skin, then slides on the brain");
+  demo->add_option("--scene", options->scene_file,
+                   "Scene file (TOML); default: the built-in brain and skin phantoms")
       ->check(CLI::ExistingFile);
   demo->add_option("--out", options->out_dir, "Output folder")->capture_default_str();
-  demo->add_option("--frames", options->frames, "Stop after this many captured frames (default: the whole script)")
+  demo->add_option("--frames", options->frames,
+                   "Stop after this many captured frames (default: the whole script)")
       ->check(CLI::PositiveNumber);
   demo->add_flag("--headless", options->headless, "Render through EGL even when there is a display");
-  demo->add_option("--width", options->width, "Frame width in pixels")->capture_default_str()->check(CLI::Range(64, 8192));
-  demo->add_option("--height", options->height, "Frame height in pixels")->capture_default_str()->check(CLI::Range(64, 8192));
+  demo->add_option("--width", options->width, "Frame width in pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(64, 8192));
+  demo->add_option("--height", options->height, "Frame height in pixels")
+      ->capture_default_str()
+      ->check(CLI::Range(64, 8192));
   on_selected(demo, [options] { return run_demo(*options); });
 }
 

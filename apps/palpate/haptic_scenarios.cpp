@@ -3,10 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <random>
 #include <string>
-
-#include <glm/geometric.hpp>
 
 #include "palpate/core/error.hpp"
 #include "palpate/haptics/haptic_pipeline.hpp"
@@ -54,8 +53,8 @@ PressSlide press_slide(glm::vec3 point, glm::vec3 normal, glm::vec3 tangent, flo
 
 }  // namespace
 
-ScenarioResult run_cycles(const Scene& scene, const Bvh& bvh, const std::vector<SampledPath>& cycles, float max_force_n,
-                          const SurfaceReference* reference) {
+ScenarioResult run_cycles(const Scene& scene, const Bvh& bvh, const std::vector<SampledPath>& cycles,
+                          float max_force_n, const SurfaceReference* reference) {
   ScenarioResult result;
   std::size_t total = 0, longest = 0;
   for (const SampledPath& path : cycles) {
@@ -91,7 +90,8 @@ ScenarioResult run_cycles(const Scene& scene, const Bvh& bvh, const std::vector<
       const float force = glm::length(tick.force_n);
       checks.max_force_n = std::max(checks.max_force_n, double(force));
       if (depth > pop_through_depth_mm && force == 0.0f) ++checks.pop_through_steps;
-      if (depth > inward_force_depth_mm && reference->pushes_inward(tip, tick.force_n)) ++checks.inward_force_steps;
+      if (depth > inward_force_depth_mm && reference->pushes_inward(tip, tick.force_n))
+        ++checks.inward_force_steps;
       if (tick.contact.in_contact()) {
         if (reference->depth_mm(tick.contact.point) > pop_through_depth_mm) ++checks.proxy_inside_steps;
         const double lag = glm::length(tick.contact.point - tip) - std::max(depth, 0.0);
@@ -132,10 +132,12 @@ std::vector<PressSlide> aimed_press_slides(const Scene& scene, std::size_t objec
   std::uniform_int_distribution<std::size_t> pick(0, target.mesh.positions.size() - 1);
   std::vector<PressSlide> slides;
   for (int attempts = 0; int(slides.size()) < shape.cycles; ++attempts) {
-    if (attempts > 1000 * shape.cycles) throw Error("haptic scenario: no vertex of '" + target.name + "' can be approached from outside");
+    if (attempts > 1000 * shape.cycles)
+      throw Error("haptic scenario: no vertex of '" + target.name + "' can be approached from outside");
     const PressSlide aimed = aim_press_slide(target, pick(rng), glm::vec3(0.0f));
-    const PressSlide slide = press_slide(aimed.surface_point_mm, aimed.normal, random_tangent(rng, aimed.normal),
-                                         std::max(aimed.curvature_radius_mm, 10.0f), shape);
+    const PressSlide slide =
+        press_slide(aimed.surface_point_mm, aimed.normal, random_tangent(rng, aimed.normal),
+                    std::max(aimed.curvature_radius_mm, 10.0f), shape);
     if (reference && reference->depth_mm(PressSlidePath(slide).sample(0.0).position_mm) > 0.0) continue;
     slides.push_back(slide);
   }
@@ -148,7 +150,8 @@ std::vector<SampledPath> aimed_cycles(const Scene& scene, std::size_t object, co
   for (const PressSlide& spec : aimed_press_slides(scene, object, shape, reference)) {
     const PressSlidePath path(spec);
     std::vector<PathSample> samples(std::size_t(shape.ticks_per_cycle));
-    for (int k = 0; k < shape.ticks_per_cycle; ++k) samples[std::size_t(k)] = {k * 1e-3, path.sample(k * 1e-3).position_mm};
+    for (int k = 0; k < shape.ticks_per_cycle; ++k)
+      samples[std::size_t(k)] = {k * 1e-3, path.sample(k * 1e-3).position_mm};
     cycles.emplace_back(std::move(samples));
   }
   return cycles;

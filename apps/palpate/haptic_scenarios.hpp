@@ -4,10 +4,9 @@
 // against a reference surface independent of the BVH and the proxy: the bumpy sphere's implicit
 // surface, or any closed mesh through MeshReference.
 #include <cstdint>
+#include <glm/vec3.hpp>
 #include <optional>
 #include <vector>
-
-#include <glm/vec3.hpp>
 
 #include "palpate/core/bvh.hpp"
 #include "palpate/core/mesh.hpp"
@@ -24,7 +23,7 @@ struct PathChecks {
   std::uint64_t inward_force_steps = 0;  // tip > 0.2 mm inside and the force points inward
   std::uint64_t proxy_inside_steps = 0;  // in contact with the proxy (SCP) > 0.5 mm inside
   double max_force_n = 0.0;
-  std::uint64_t stuck_cycles = 0;        // cycles with a stuck step (see haptic_scenarios.cpp)
+  std::uint64_t stuck_cycles = 0;  // cycles with a stuck step (see haptic_scenarios.cpp)
 };
 
 struct ScenarioResult {

@@ -15,7 +15,9 @@ Image downsample(const Image& image, int factor) {
         unsigned sum = 0;
         for (int dy = 0; dy < factor; ++dy) {
           for (int dx = 0; dx < factor; ++dx) {
-            sum += image.rgba[(std::size_t(y * factor + dy) * std::size_t(image.width) + std::size_t(x * factor + dx)) * 4 +
+            sum += image.rgba[(std::size_t(y * factor + dy) * std::size_t(image.width) +
+                               std::size_t(x * factor + dx)) *
+                                  4 +
                               std::size_t(c)];
           }
         }

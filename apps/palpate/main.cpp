@@ -1,7 +1,8 @@
 // palpate: the command-line front end. Each subcommand lives in its own file and is built only from
 // the library's public API.
-#include <CLI/CLI.hpp>
 #include <malloc.h>
+
+#include <CLI/CLI.hpp>
 #include <cstdio>
 #include <exception>
 

@@ -18,7 +18,9 @@ namespace {
 // Loader warnings (fields dropped, text skipped; each names its file) go to stderr.
 LoadOptions warn_on_stderr() {
   LoadOptions options;
-  options.on_warning = [](const std::string& warning) { std::fprintf(stderr, "palpate: warning: %s\n", warning.c_str()); };
+  options.on_warning = [](const std::string& warning) {
+    std::fprintf(stderr, "palpate: warning: %s\n", warning.c_str());
+  };
   return options;
 }
 
@@ -29,7 +31,8 @@ int mesh_info(const std::vector<std::string>& files) {
       const auto start = std::chrono::steady_clock::now();
       const bool scene_file = std::filesystem::path(file).extension() == ".toml";
       const Scene model = scene_file ? load_scene(file) : load_model(file, warn_on_stderr());
-      const double load_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+      const double load_ms =
+          std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
       Mesh merged;
       for (const SceneObject& object : model.objects) {
         Mesh world = object.mesh;
@@ -42,14 +45,17 @@ int mesh_info(const std::vector<std::string>& files) {
       std::printf("  objects     %zu\n", model.objects.size());
       std::printf("  vertices    %s\n", with_thousands(merged.vertex_count()).c_str());
       std::printf("  triangles   %s\n", with_thousands(merged.triangle_count()).c_str());
-      std::printf("  bounds      [%.2f, %.2f, %.2f] .. [%.2f, %.2f, %.2f] (size %.2f x %.2f x %.2f)\n", box.min.x,
-                  box.min.y, box.min.z, box.max.x, box.max.y, box.max.z, box.size().x, box.size().y, box.size().z);
-      std::printf("  closed      %s (%zu boundary edges)\n", topo.closed() ? "yes" : "no", topo.boundary_edges);
+      std::printf("  bounds      [%.2f, %.2f, %.2f] .. [%.2f, %.2f, %.2f] (size %.2f x %.2f x %.2f)\n",
+                  box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z, box.size().x,
+                  box.size().y, box.size().z);
+      std::printf("  closed      %s (%zu boundary edges)\n", topo.closed() ? "yes" : "no",
+                  topo.boundary_edges);
       std::printf("  manifold    %s (%zu non-manifold edges, %zu degenerate triangles)\n",
                   topo.manifold() ? "yes" : "no", topo.nonmanifold_edges, topo.degenerate_triangles);
       std::printf("  oriented    %s (%zu misoriented edges)\n", topo.oriented() ? "yes" : "no",
                   topo.misoriented_edges);
-      std::printf("  components  %zu, Euler characteristic %ld\n", topo.components, topo.euler_characteristic);
+      std::printf("  components  %zu, Euler characteristic %ld\n", topo.components,
+                  topo.euler_characteristic);
       std::printf("  load time   %.1f ms\n", load_ms);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "palpate: error: %s\n", e.what());
@@ -66,8 +72,11 @@ void add_mesh_command(CLI::App& app) {
   group->require_subcommand(1);
 
   auto files = std::make_shared<std::vector<std::string>>();
-  CLI::App* info = group->add_subcommand("info", "Objects, vertices, triangles, bounds, topology and load time");
-  info->add_option("files", *files, "Model files (.wrl .wrl.gz .iv .obj .ply .stl .off .gltf .glb .gii) or scene files (.toml)")
+  CLI::App* info =
+      group->add_subcommand("info", "Objects, vertices, triangles, bounds, topology and load time");
+  info->add_option(
+          "files", *files,
+          "Model files (.wrl .wrl.gz .iv .obj .ply .stl .off .gltf .glb .gii) or scene files (.toml)")
       ->required()
       ->check(CLI::ExistingFile);
   on_selected(info, [files] { return mesh_info(*files); });
@@ -79,8 +88,8 @@ void add_mesh_command(CLI::App& app) {
   on_selected(convert, [in, out] {
     const Mesh mesh = load_mesh(*in, warn_on_stderr());
     save_mesh(mesh, *out);
-    std::printf("wrote %s: %s vertices, %s triangles\n", out->c_str(), with_thousands(mesh.vertex_count()).c_str(),
-                with_thousands(mesh.triangle_count()).c_str());
+    std::printf("wrote %s: %s vertices, %s triangles\n", out->c_str(),
+                with_thousands(mesh.vertex_count()).c_str(), with_thousands(mesh.triangle_count()).c_str());
     return 0;
   });
 
@@ -91,7 +100,8 @@ void add_mesh_command(CLI::App& app) {
   };
   auto opts = std::make_shared<PhantomOptions>();
   CLI::App* phantom = group->add_subcommand("phantom", "Generate the brain or skin phantom (deterministic)");
-  auto* brain_flag = phantom->add_flag("--brain", opts->brain, "Brain: gyri, deep sulci, longitudinal fissure");
+  auto* brain_flag =
+      phantom->add_flag("--brain", opts->brain, "Brain: gyri, deep sulci, longitudinal fissure");
   auto* skin_flag = phantom->add_flag("--skin", opts->skin, "Head-shaped skin that encloses the brain");
   brain_flag->excludes(skin_flag);
   phantom->add_option("--vertices", opts->vertices,
@@ -99,11 +109,12 @@ void add_mesh_command(CLI::App& app) {
   phantom->add_option("-o,--output", opts->output, "File to write (.ply or .wrl)")->required();
   on_selected(phantom, [opts] {
     if (!opts->brain && !opts->skin) throw CLI::ValidationError("mesh phantom", "give --brain or --skin");
-    const std::size_t n = opts->vertices ? opts->vertices : (opts->brain ? brain_phantom_vertices : skin_phantom_vertices);
+    const std::size_t n =
+        opts->vertices ? opts->vertices : (opts->brain ? brain_phantom_vertices : skin_phantom_vertices);
     const Mesh mesh = opts->brain ? make_brain_phantom(n) : make_skin_phantom(n);
     save_mesh(mesh, opts->output);
-    std::printf("wrote %s: %s vertices, %s triangles\n", opts->output.c_str(), with_thousands(mesh.vertex_count()).c_str(),
-                with_thousands(mesh.triangle_count()).c_str());
+    std::printf("wrote %s: %s vertices, %s triangles\n", opts->output.c_str(),
+                with_thousands(mesh.vertex_count()).c_str(), with_thousands(mesh.triangle_count()).c_str());
     return 0;
   });
 }

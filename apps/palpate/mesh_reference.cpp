@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
 
@@ -61,7 +60,8 @@ MeshReference::Grid MeshReference::build(const SceneObject& object) {
     last = glm::ivec3(glm::floor((glm::max(tri.a, glm::max(tri.b, tri.c)) - grid.origin) / grid.cell));
   };
   const auto index = [&](int x, int y, int z) {
-    return (std::size_t(z) * std::size_t(grid.size.y) + std::size_t(y)) * std::size_t(grid.size.x) + std::size_t(x);
+    return (std::size_t(z) * std::size_t(grid.size.y) + std::size_t(y)) * std::size_t(grid.size.x) +
+           std::size_t(x);
   };
   // Two passes: count per cell, then fill.
   grid.offsets.assign(cells + 1, 0);
@@ -78,8 +78,10 @@ MeshReference::Grid MeshReference::build(const SceneObject& object) {
       for (int z = first.z; z <= last.z; ++z)
         for (int y = first.y; y <= last.y; ++y)
           for (int x = first.x; x <= last.x; ++x) {
-            if (pass == 0) ++grid.offsets[index(x, y, z) + 1];
-            else grid.entries[cursor[index(x, y, z)]++] = t;
+            if (pass == 0)
+              ++grid.offsets[index(x, y, z) + 1];
+            else
+              grid.entries[cursor[index(x, y, z)]++] = t;
           }
     }
   }
@@ -88,11 +90,13 @@ MeshReference::Grid MeshReference::build(const SceneObject& object) {
 
 bool MeshReference::inside(const Grid& grid, glm::dvec3 p) const {
   const glm::ivec3 cell = glm::ivec3(glm::floor((p - grid.origin) / grid.cell));
-  if (glm::any(glm::lessThan(cell, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(cell, grid.size))) return false;
+  if (glm::any(glm::lessThan(cell, glm::ivec3(0))) || glm::any(glm::greaterThanEqual(cell, grid.size)))
+    return false;
   int crossings = 0;
   for (int z = cell.z; z < grid.size.z; ++z) {
-    const std::size_t i = (std::size_t(z) * std::size_t(grid.size.y) + std::size_t(cell.y)) * std::size_t(grid.size.x) +
-                          std::size_t(cell.x);
+    const std::size_t i =
+        (std::size_t(z) * std::size_t(grid.size.y) + std::size_t(cell.y)) * std::size_t(grid.size.x) +
+        std::size_t(cell.x);
     for (std::uint32_t e = grid.offsets[i]; e < grid.offsets[i + 1]; ++e) {
       const Triangle& tri = grid.triangles[grid.entries[e]];
       // Does the vertical line through p cross the triangle's xy projection? Barycentrics in 2D.
@@ -122,11 +126,13 @@ double MeshReference::distance(const Grid& grid, glm::dvec3 p) const {
     for (int z = centre.z - ring; z <= centre.z + ring; ++z)
       for (int y = centre.y - ring; y <= centre.y + ring; ++y)
         for (int x = centre.x - ring; x <= centre.x + ring; ++x) {
-          const int chebyshev = std::max({std::abs(x - centre.x), std::abs(y - centre.y), std::abs(z - centre.z)});
+          const int chebyshev =
+              std::max({std::abs(x - centre.x), std::abs(y - centre.y), std::abs(z - centre.z)});
           if (chebyshev != ring) continue;
           if (x < 0 || y < 0 || z < 0 || x >= grid.size.x || y >= grid.size.y || z >= grid.size.z) continue;
           const std::size_t i =
-              (std::size_t(z) * std::size_t(grid.size.y) + std::size_t(y)) * std::size_t(grid.size.x) + std::size_t(x);
+              (std::size_t(z) * std::size_t(grid.size.y) + std::size_t(y)) * std::size_t(grid.size.x) +
+              std::size_t(x);
           for (std::uint32_t e = grid.offsets[i]; e < grid.offsets[i + 1]; ++e) {
             const Triangle& tri = grid.triangles[grid.entries[e]];
             best = std::min(best, glm::length(p - closest_point(p, tri.a, tri.b, tri.c)));

@@ -5,9 +5,8 @@
 // distance by the nearest triangle in growing rings of cells. Not for the haptic tick (tens of
 // microseconds a query); built for checking, and written plainly so it is easy to trust.
 #include <cstdint>
-#include <vector>
-
 #include <glm/vec3.hpp>
+#include <vector>
 
 #include "palpate/core/scene.hpp"
 #include "surface_reference.hpp"

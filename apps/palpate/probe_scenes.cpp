@@ -71,13 +71,16 @@ SurfaceSlide brain_slide(float length_mm, float speed_mm_per_s, float scale) {
 
 }  // namespace
 
-float scene_scale(const Scene& scene) { return glm::length(world_bounds(scene).size()) / 400.0f; }
+float scene_scale(const Scene& scene) {
+  return glm::length(world_bounds(scene).size()) / 400.0f;
+}
 
 int outer_object(const Scene& scene) {
   if (scene.objects.empty()) throw Error("scene has no objects");
   int best = 0;
   for (int i = 1; i < int(scene.objects.size()); ++i) {
-    if (volume(world_bounds(scene.objects[std::size_t(i)])) > volume(world_bounds(scene.objects[std::size_t(best)]))) {
+    if (volume(world_bounds(scene.objects[std::size_t(i)])) >
+        volume(world_bounds(scene.objects[std::size_t(best)]))) {
       best = i;
     }
   }
@@ -116,8 +119,8 @@ std::vector<Phase> demo_phases(const Scene& scene) {
 
   Phase presses{model_name(scene, all), scene, demo_camera(world_bounds(scene), 0.7f), {}};
   const glm::vec2 sites[] = {{0.45f, 0.25f}, {0.6f, 0.4f}, {0.36f, 0.42f}};
-  presses.script = press_script(aim_at_view(scene, outer, presses.camera, sites, skin_press(scale)),
-                                60.0f * scale);
+  presses.script =
+      press_script(aim_at_view(scene, outer, presses.camera, sites, skin_press(scale)), 60.0f * scale);
   presses.probe_radius_mm = 1.5f * scale;
   phases.push_back(std::move(presses));
 
@@ -126,7 +129,10 @@ std::vector<Phase> demo_phases(const Scene& scene) {
     std::vector<bool> shown = all;
     shown[std::size_t(outer)] = false;
     Scene inside = with_shown(scene, shown);
-    Phase slide{model_name(scene, shown), inside, demo_camera(world_bounds(scene.objects[std::size_t(inner)]), 0.45f), {}};
+    Phase slide{model_name(scene, shown),
+                inside,
+                demo_camera(world_bounds(scene.objects[std::size_t(inner)]), 0.45f),
+                {}};
     // Along the smooth gyrus beside the fissure, then across the sulci at its end.
     SurfaceSlide spec = brain_slide(50.0f, 20.0f, scale);
     spec.screen_direction = {0.35f, -1.0f};

@@ -1,8 +1,8 @@
 #include "report.hpp"
 
-#include "format.hpp"
-
 #include <glm/gtc/type_ptr.hpp>
+
+#include "format.hpp"
 
 namespace palpate::cli {
 namespace {
@@ -12,12 +12,14 @@ nlohmann::json matrix_json(const glm::mat4& m) {
   return nlohmann::json(std::vector<float>(v, v + 16));
 }
 
-nlohmann::json vec_json(glm::vec3 v) { return {v.x, v.y, v.z}; }
-
+nlohmann::json vec_json(glm::vec3 v) {
+  return {v.x, v.y, v.z};
+}
 
 }  // namespace
 
-nlohmann::json run_report_json(const std::string& device, int width, int height, const std::vector<PhaseResult>& results) {
+nlohmann::json run_report_json(const std::string& device, int width, int height,
+                               const std::vector<PhaseResult>& results) {
   nlohmann::json rows = nlohmann::json::array();
   for (const PhaseResult& r : results) {
     rows.push_back({{"model", r.model},
@@ -49,29 +51,35 @@ nlohmann::json key_frame_json(const std::string& file, const Phase& phase, const
           {"view", matrix_json(frame.view)},
           {"projection", matrix_json(frame.projection)},
           {"contact",
-           {{"object", c.object}, {"point", vec_json(c.point)}, {"hip", vec_json(c.hip)}, {"depth_mm", c.depth_mm}}}};
+           {{"object", c.object},
+            {"point", vec_json(c.point)},
+            {"hip", vec_json(c.hip)},
+            {"depth_mm", c.depth_mm}}}};
 }
 
-void print_table1(std::FILE* out, const std::string& device, int width, int height, const std::vector<PhaseResult>& results,
-                  const std::vector<double>& cpu_naive_fps) {
+void print_table1(std::FILE* out, const std::string& device, int width, int height,
+                  const std::vector<PhaseResult>& results, const std::vector<double>& cpu_naive_fps) {
   std::fprintf(out, "\nTABLE I  PERFORMANCE RESULTS (this run: %s, %dx%d)\n", device.c_str(), width, height);
-  std::fprintf(out, "%-14s %10s %10s %13s %12s %17s", "3D model", "vertices", "faces", "graphics fps", "haptics Hz",
-               "contact age ms");
+  std::fprintf(out, "%-14s %10s %10s %13s %12s %17s", "3D model", "vertices", "faces", "graphics fps",
+               "haptics Hz", "contact age ms");
   if (!cpu_naive_fps.empty()) std::fprintf(out, " %15s %8s", "CPU-naive fps", "ratio");
   std::fprintf(out, "\n");
   for (std::size_t i = 0; i < results.size(); ++i) {
     const PhaseResult& r = results[i];
     char age[32];
     std::snprintf(age, sizeof age, "%.2f / %.2f", r.contact_age_ms.p50, r.contact_age_ms.p99);
-    std::fprintf(out, "%-14s %10s %10s %13.1f %12.1f %17s", r.model.c_str(), with_thousands(r.vertices).c_str(),
-                 with_thousands(r.faces).c_str(), r.graphics_fps, r.haptics_hz, age);
+    std::fprintf(out, "%-14s %10s %10s %13.1f %12.1f %17s", r.model.c_str(),
+                 with_thousands(r.vertices).c_str(), with_thousands(r.faces).c_str(), r.graphics_fps,
+                 r.haptics_hz, age);
     if (i < cpu_naive_fps.size()) {
-      std::fprintf(out, " %15.1f %7.2fx", cpu_naive_fps[i], cpu_naive_fps[i] > 0 ? r.graphics_fps / cpu_naive_fps[i] : 0.0);
+      std::fprintf(out, " %15.1f %7.2fx", cpu_naive_fps[i],
+                   cpu_naive_fps[i] > 0 ? r.graphics_fps / cpu_naive_fps[i] : 0.0);
     }
     std::fprintf(out, "\n");
   }
-  std::fprintf(out, "(paper, 2004 hardware: Brain 68,856 v 61 fps 1000 Hz; Skin 90,207 v 60 fps 1000 Hz; "
-                    "Skin + Brain 159,063 v 59 fps 999 Hz. Contact age: p50 / p99.)\n");
+  std::fprintf(out,
+               "(paper, 2004 hardware: Brain 68,856 v 61 fps 1000 Hz; Skin 90,207 v 60 fps 1000 Hz; "
+               "Skin + Brain 159,063 v 59 fps 999 Hz. Contact age: p50 / p99.)\n");
 }
 
 }  // namespace palpate::cli

@@ -18,7 +18,9 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-double seconds_since(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+double seconds_since(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
 
 // Appends a straight move from the last sample to `to` at `speed_mm_per_s`, sampled every millisecond.
 void move_to(std::vector<PathSample>& samples, glm::vec3 to, float speed_mm_per_s) {
@@ -74,7 +76,8 @@ class ObjectCaster {
  private:
   static Scene only(const Scene& scene, int object_index) {
     Scene out = scene;
-    for (std::size_t i = 0; i < out.objects.size(); ++i) out.objects[i].material.touchable = int(i) == object_index;
+    for (std::size_t i = 0; i < out.objects.size(); ++i)
+      out.objects[i].material.touchable = int(i) == object_index;
     return out;
   }
   Bvh bvh_;
@@ -102,15 +105,16 @@ std::string missed(const Scene& scene, int object_index, glm::vec2 where) {
 
 }  // namespace
 
-ProbeScript surface_slide_script(const Scene& scene, int object_index, const OrbitCamera& camera, glm::vec2 where,
-                                 const SurfaceSlide& spec) {
+ProbeScript surface_slide_script(const Scene& scene, int object_index, const OrbitCamera& camera,
+                                 glm::vec2 where, const SurfaceSlide& spec) {
   const ObjectCaster caster(scene, object_index);
   const OrbitCamera::Ray ray = view_ray(camera, where);
   const BvhHit start = caster.cast(ray.origin, ray.origin + ray.direction * camera.distance_mm * 4.0f);
   if (!start.hit()) throw Error(missed(scene, object_index, where));
   const glm::vec3 centre = world_bounds(scene.objects[std::size_t(object_index)]).center();
   const glm::vec3 radial0 = glm::normalize(start.point - centre);
-  const glm::vec3 heading = camera_right(camera) * spec.screen_direction.x + camera_up(camera) * spec.screen_direction.y;
+  const glm::vec3 heading =
+      camera_right(camera) * spec.screen_direction.x + camera_up(camera) * spec.screen_direction.y;
   const glm::vec3 axis = glm::normalize(glm::cross(radial0, heading));
   const float radius = glm::distance(start.point, centre);
   const float reach = 2.0f * radius;
@@ -118,7 +122,8 @@ ProbeScript surface_slide_script(const Scene& scene, int object_index, const Orb
   // The tip below the surface met from outside along the radial direction, `s` mm along the arc.
   glm::vec3 last_tip = start.point - radial0 * spec.depth_mm;
   const auto tip_at = [&](float s_mm, float depth_mm) {
-    const glm::vec3 radial = glm::vec3(glm::rotate(glm::mat4(1.0f), s_mm / radius, axis) * glm::vec4(radial0, 0.0f));
+    const glm::vec3 radial =
+        glm::vec3(glm::rotate(glm::mat4(1.0f), s_mm / radius, axis) * glm::vec4(radial0, 0.0f));
     const BvhHit hit = caster.cast(centre + radial * (radius + reach), centre);
     if (hit.hit()) last_tip = hit.point - radial * depth_mm;
     return last_tip;
@@ -132,7 +137,8 @@ ProbeScript surface_slide_script(const Scene& scene, int object_index, const Orb
   const int slide = std::max(1, int(spec.length_mm / spec.speed_mm_per_s * 1000.0f));
   for (int i = 1; i <= slide; ++i) {
     const float s = spec.length_mm * float(i) / float(slide);
-    add(1e-3, tip_at(s, spec.depth_mm + spec.depth_amplitude_mm * std::sin(4.0f * std::numbers::pi_v<float> * s / spec.length_mm)));
+    add(1e-3, tip_at(s, spec.depth_mm + spec.depth_amplitude_mm *
+                                            std::sin(4.0f * std::numbers::pi_v<float> * s / spec.length_mm)));
   }
   const glm::vec3 last = samples.back().position_mm;
   const glm::vec3 away = last + glm::normalize(last - centre) * (spec.start_height_mm + spec.depth_mm);
@@ -157,7 +163,9 @@ std::vector<PressSlide> aim_at_view(const Scene& scene, int object_index, const 
     std::size_t nearest = object.mesh.indices[std::size_t(hit.triangle) * 3];
     for (int k = 1; k < 3; ++k) {
       const std::size_t v = object.mesh.indices[std::size_t(hit.triangle) * 3 + std::size_t(k)];
-      if (glm::distance(object.mesh.positions[v], local) < glm::distance(object.mesh.positions[nearest], local)) nearest = v;
+      if (glm::distance(object.mesh.positions[v], local) <
+          glm::distance(object.mesh.positions[nearest], local))
+        nearest = v;
     }
     presses.push_back(aim_press_slide(object, nearest, camera_right(camera), spec));
   }
@@ -182,9 +190,7 @@ PhaseResult run_phase(const Phase& phase, gl::Renderer& renderer, const gl::Fram
 
   const float aspect = float(framebuffer.width()) / float(framebuffer.height());
   const glm::mat4 view = phase.camera.view(), projection = phase.camera.projection(aspect);
-  const double end_s = options.max_seconds > 0.0
-                           ? options.max_seconds
-                           : phase.script.path.end_s() + 0.1;
+  const double end_s = options.max_seconds > 0.0 ? options.max_seconds : phase.script.path.end_s() + 0.1;
   std::vector<double> ages_ms;
   ages_ms.reserve(4096);
   gl::DrawOptions draw;
@@ -216,7 +222,8 @@ PhaseResult run_phase(const Phase& phase, gl::Renderer& renderer, const gl::Fram
     result.frame_times_s.push_back(now_s);
 
     if (options.capture_fps > 0.0 && options.on_capture && now_s >= next_capture_s) {
-      options.on_capture(CapturedFrame{captures_so_far + result.captures, now_s, contact, view, projection, &framebuffer});
+      options.on_capture(
+          CapturedFrame{captures_so_far + result.captures, now_s, contact, view, projection, &framebuffer});
       ++result.captures;
       next_capture_s += 1.0 / options.capture_fps;
       if (next_capture_s < now_s) next_capture_s = now_s;  // drawing slower than the capture rate: no burst
@@ -224,8 +231,9 @@ PhaseResult run_phase(const Phase& phase, gl::Renderer& renderer, const gl::Fram
     if (options.window) {
       glBindFramebuffer(GL_READ_FRAMEBUFFER, framebuffer.id());
       glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
-      glBlitFramebuffer(0, 0, framebuffer.width(), framebuffer.height(), 0, 0, options.window->framebuffer_width(),
-                        options.window->framebuffer_height(), GL_COLOR_BUFFER_BIT, GL_LINEAR);
+      glBlitFramebuffer(0, 0, framebuffer.width(), framebuffer.height(), 0, 0,
+                        options.window->framebuffer_width(), options.window->framebuffer_height(),
+                        GL_COLOR_BUFFER_BIT, GL_LINEAR);
       options.window->swap_buffers();
       gl::Window::poll_events();
     }

@@ -43,10 +43,10 @@ struct Phase {
 ProbeScript press_script(const std::vector<PressSlide>& presses, float clearance_mm = 60.0f);
 
 struct SurfaceSlide {
-  float start_height_mm = 12.0f;   // approach from this far outside
-  float depth_mm = 3.0f;           // below the surface, along the direction from the object's centre
+  float start_height_mm = 12.0f;    // approach from this far outside
+  float depth_mm = 3.0f;            // below the surface, along the direction from the object's centre
   float depth_amplitude_mm = 1.0f;  // depth varies by this much, two cycles over the slide
-  float length_mm = 50.0f;         // along a great circle about the object's bounds centre
+  float length_mm = 50.0f;          // along a great circle about the object's bounds centre
   float speed_mm_per_s = 20.0f;
   float approach_s = 0.4f, retract_s = 0.3f;
   glm::vec2 screen_direction{1.0f, 0.0f};  // heading on screen: x right, y up
@@ -57,8 +57,8 @@ struct SurfaceSlide {
 // through gyri (a slide at a fixed depth below a smooth sphere traps a god-object in the first
 // groove). Starts at the surface seen through the viewport position `where` and heads along
 // `screen_direction`. Throws palpate::Error when the view misses the object.
-ProbeScript surface_slide_script(const Scene& scene, int object_index, const OrbitCamera& camera, glm::vec2 where,
-                                 const SurfaceSlide& spec);
+ProbeScript surface_slide_script(const Scene& scene, int object_index, const OrbitCamera& camera,
+                                 glm::vec2 where, const SurfaceSlide& spec);
 
 // Presses at the surface points of `object_index` seen from the camera through the viewport
 // positions `sites` (x, y in [0, 1] from the top left), each sliding toward the camera's right.
@@ -67,9 +67,9 @@ std::vector<PressSlide> aim_at_view(const Scene& scene, int object_index, const 
                                     std::span<const glm::vec2> sites, const PressSlide& spec);
 
 struct CapturedFrame {
-  int index = 0;             // capture number within the run
-  double time_s = 0.0;       // haptic run time at the frame
-  Contact contact;           // what the frame was drawn with
+  int index = 0;        // capture number within the run
+  double time_s = 0.0;  // haptic run time at the frame
+  Contact contact;      // what the frame was drawn with
   glm::mat4 view{1.0f}, projection{1.0f};
   const gl::Framebuffer* framebuffer = nullptr;  // holds the frame (read it before returning)
 };
@@ -89,12 +89,12 @@ struct PhaseResult {
   std::size_t vertices = 0, faces = 0;  // of the visible objects
   int frames = 0;
   double seconds = 0.0;
-  double graphics_fps = 0.0;            // frames over the time spent drawing them (capture excluded)
-  double haptics_hz = 0.0;              // ticks over the run's length
-  Percentiles contact_age_ms;           // how old the contact each frame drew was
+  double graphics_fps = 0.0;   // frames over the time spent drawing them (capture excluded)
+  double haptics_hz = 0.0;     // ticks over the run's length
+  Percentiles contact_age_ms;  // how old the contact each frame drew was
   LoopStatistics haptics;
-  std::vector<double> frame_ms;         // each frame's drawing time
-  std::vector<double> frame_times_s;    // run time at each frame
+  std::vector<double> frame_ms;       // each frame's drawing time
+  std::vector<double> frame_times_s;  // run time at each frame
   int captures = 0;
 };
 

@@ -1,9 +1,8 @@
 #include "surface_reference.hpp"
 
 #include <cmath>
-#include <string>
-
 #include <glm/geometric.hpp>
+#include <string>
 
 #include "palpate/core/error.hpp"
 
@@ -44,7 +43,8 @@ void BumpySphereReference::verify(const Mesh& mesh) const {
     const glm::dvec3 v(mesh.positions[i]);
     const double off = std::abs(glm::length(v) - radius_at(glm::normalize(v)));
     if (!(off <= 1e-3)) {
-      throw Error("bench haptics: vertex " + std::to_string(i) + " of the bumpy sphere is " + std::to_string(off) +
+      throw Error("bench haptics: vertex " + std::to_string(i) + " of the bumpy sphere is " +
+                  std::to_string(off) +
                   " mm off the reference surface: make_bumpy_sphere changed, update BumpySphereReference");
     }
   }

@@ -1,9 +1,8 @@
 #pragma once
 // Reference surfaces for the bench's checks: where a point is with respect to a closed surface,
 // computed without palpate's BVH or proxy.
-#include <limits>
-
 #include <glm/vec3.hpp>
+#include <limits>
 
 #include "palpate/core/mesh.hpp"
 

@@ -32,8 +32,8 @@ namespace {
 struct ViewOptions {
   std::string scene_file;
   int width = 1280, height = 1024;
-  int frames = -1;            // quit after this many frames (for scripted runs)
-  std::string screenshot;     // write the last frame here before quitting
+  int frames = -1;              // quit after this many frames (for scripted runs)
+  std::string screenshot;       // write the last frame here before quitting
   float press_depth_mm = 0.0f;  // start with the tip this deep under the window's centre
 };
 
@@ -54,14 +54,15 @@ void restart_haptics(Haptics& haptics, VirtualDevice& device, const Scene& scene
 
 // Applies the panel's edited materials to the scene: what the haptic thread reads only with its loop
 // stopped, what only the renderer reads (its own copy, uploaded again) at once.
-void apply_materials(Scene& scene, const std::vector<Material>& edited, Haptics& haptics, VirtualDevice& device,
-                     gl::Renderer& renderer) {
+void apply_materials(Scene& scene, const std::vector<Material>& edited, Haptics& haptics,
+                     VirtualDevice& device, gl::Renderer& renderer) {
   bool touch = false, force = false, look = false;
   for (std::size_t i = 0; i < edited.size(); ++i) {
     const Material& now = scene.objects[i].material;
     const Material& next = edited[i];
     touch |= now.touchable != next.touchable;
-    force |= now.stiffness_n_per_mm != next.stiffness_n_per_mm || now.damping_ns_per_m != next.damping_ns_per_m;
+    force |=
+        now.stiffness_n_per_mm != next.stiffness_n_per_mm || now.damping_ns_per_m != next.damping_ns_per_m;
     look |= now.sigma_mm != next.sigma_mm || now.visible != next.visible || now.color != next.color;
   }
   if (touch || force) {
@@ -104,12 +105,14 @@ bool to_screen(const glm::mat4& view_projection, glm::vec3 p, glm::vec2 size, Im
   return true;
 }
 
-void draw_force_arrow(const glm::mat4& view_projection, glm::vec2 size, glm::vec3 hip, glm::vec3 force_n, float depth_mm,
-                      float mm_per_newton) {
+void draw_force_arrow(const glm::mat4& view_projection, glm::vec2 size, glm::vec3 hip, glm::vec3 force_n,
+                      float depth_mm, float mm_per_newton) {
   const float magnitude = glm::length(force_n);
   if (magnitude < 1e-3f) return;
   ImVec2 from, to;
-  if (!to_screen(view_projection, hip, size, from) || !to_screen(view_projection, hip + force_n * mm_per_newton, size, to)) return;
+  if (!to_screen(view_projection, hip, size, from) ||
+      !to_screen(view_projection, hip + force_n * mm_per_newton, size, to))
+    return;
   ImDrawList* draw = ImGui::GetForegroundDrawList();
   const ImU32 color = IM_COL32(255, 210, 60, 255);
   draw->AddLine(from, to, color, 3.0f);
@@ -139,22 +142,25 @@ struct Panel {
 
 // The control panel. Materials are edited in `materials` (a copy: the haptic thread reads the scene's).
 void draw_panel(const Scene& scene, std::vector<Material>& materials, gl::DrawOptions& draw, Panel& panel,
-                const LoopStatistics& stats, const Contact& contact, glm::vec3 force_n, bool& reset_tip, bool& screenshot) {
+                const LoopStatistics& stats, const Contact& contact, glm::vec3 force_n, bool& reset_tip,
+                bool& screenshot) {
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("palpate");
-  ImGui::TextWrapped("Left drag: move the tip. Shift+wheel or W/S: tip depth. Right drag: orbit. Wheel: zoom. "
-                     "R: reset tip. P: screenshot. Esc: quit.");
+  ImGui::TextWrapped(
+      "Left drag: move the tip. Shift+wheel or W/S: tip depth. Right drag: orbit. Wheel: zoom. "
+      "R: reset tip. P: screenshot. Esc: quit.");
   if (ImGui::CollapsingHeader("Rates", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::Text("graphics %.1f fps (%.2f ms)", ImGui::GetIO().Framerate, 1000.0f / ImGui::GetIO().Framerate);
     ImGui::Text("haptics %.1f Hz, %llu missed, tick p99 %.1f us", stats.achieved_hz,
                 static_cast<unsigned long long>(stats.missed_deadlines), stats.tick_us.p99);
-    ImGui::Text("period error p50 %.1f  p99 %.1f  p99.9 %.1f us", stats.period_error_us.p50, stats.period_error_us.p99,
-                stats.period_error_us.p999);
+    ImGui::Text("period error p50 %.1f  p99 %.1f  p99.9 %.1f us", stats.period_error_us.p50,
+                stats.period_error_us.p99, stats.period_error_us.p999);
     float bins[LoopStatistics::histogram_bins];
-    for (std::size_t i = 0; i < LoopStatistics::histogram_bins; ++i) bins[i] = float(stats.period_histogram[i]);
-    ImGui::PlotHistogram("##period", bins, int(LoopStatistics::histogram_bins), 0, "haptic period 0.5 .. 1.5 T", 0.0f,
-                         FLT_MAX, ImVec2(0, 70));
+    for (std::size_t i = 0; i < LoopStatistics::histogram_bins; ++i)
+      bins[i] = float(stats.period_histogram[i]);
+    ImGui::PlotHistogram("##period", bins, int(LoopStatistics::histogram_bins), 0,
+                         "haptic period 0.5 .. 1.5 T", 0.0f, FLT_MAX, ImVec2(0, 70));
   }
   if (ImGui::CollapsingHeader("Contact", ImGuiTreeNodeFlags_DefaultOpen)) {
     if (contact.in_contact()) {
@@ -192,7 +198,8 @@ void draw_panel(const Scene& scene, std::vector<Material>& materials, gl::DrawOp
   }
   if (ImGui::CollapsingHeader("Lights")) {
     gl::Lighting& light = draw.lighting;
-    if (ImGui::SliderFloat3("directional", &light.direction.x, -1.0f, 1.0f) && glm::length(light.direction) > 1e-3f) {
+    if (ImGui::SliderFloat3("directional", &light.direction.x, -1.0f, 1.0f) &&
+        glm::length(light.direction) > 1e-3f) {
       light.direction = glm::normalize(light.direction);
     }
     ImGui::ColorEdit3("directional colour", &light.color.x);
@@ -208,7 +215,8 @@ void draw_panel(const Scene& scene, std::vector<Material>& materials, gl::DrawOp
 int run_view(const ViewOptions& options) {
   Scene scene = options.scene_file.empty() ? default_scene() : load_scene(options.scene_file);
   GlSession session = open_gl(false, options.width, options.height, "palpate view");
-  if (!session.window) throw Error("palpate view needs a display ($DISPLAY): run it under X or Xvfb, or use `palpate demo`");
+  if (!session.window)
+    throw Error("palpate view needs a display ($DISPLAY): run it under X or Xvfb, or use `palpate demo`");
   gl::Window& window = *session.window;
   auto* native = static_cast<GLFWwindow*>(window.native_handle());
 
@@ -227,8 +235,8 @@ int run_view(const ViewOptions& options) {
   haptics.bvh = Bvh::build(scene);  // the haptic loop's, also to find where the tip starts
   glm::vec3 start_tip = camera.target, tip = camera.target;
   const OrbitCamera::Ray ray = camera.ray_through(initial_size * 0.5f, initial_size);
-  const BvhHit hit =
-      haptics.bvh.first_hit(glm::dvec3(ray.origin), glm::dvec3(ray.origin + ray.direction * camera.distance_mm * 3.0f));
+  const BvhHit hit = haptics.bvh.first_hit(
+      glm::dvec3(ray.origin), glm::dvec3(ray.origin + ray.direction * camera.distance_mm * 3.0f));
   if (hit.hit()) {
     start_tip = hit.point - ray.direction * 10.0f * scale;
     tip = options.press_depth_mm > 0.0f ? hit.point + ray.direction * options.press_depth_mm : start_tip;
@@ -260,11 +268,13 @@ int run_view(const ViewOptions& options) {
     glfwGetCursorPos(native, &cursor.x, &cursor.y);
     int window_width = 1, window_height = 1;
     glfwGetWindowSize(native, &window_width, &window_height);
-    const glm::vec2 pixel = glm::vec2(cursor) * size / glm::vec2(std::max(window_width, 1), std::max(window_height, 1));
+    const glm::vec2 pixel =
+        glm::vec2(cursor) * size / glm::vec2(std::max(window_width, 1), std::max(window_height, 1));
     if (!io.WantCaptureMouse) {
       const bool left = glfwGetMouseButton(native, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
       const bool right = glfwGetMouseButton(native, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
-      if (right && orbiting) camera.orbit(float(last_cursor.x - cursor.x) * 0.008f, float(cursor.y - last_cursor.y) * 0.008f);
+      if (right && orbiting)
+        camera.orbit(float(last_cursor.x - cursor.x) * 0.008f, float(cursor.y - last_cursor.y) * 0.008f);
       orbiting = right;
       dragging_tip = left;
       if (dragging_tip) tip = tip_under_cursor(camera, pixel, size, tip);
@@ -304,11 +314,14 @@ int run_view(const ViewOptions& options) {
       device.set_target(tip);
     }
     const glm::mat4 view = camera.view(), projection = camera.projection(size.x / size.y);
-    if (latest.in_contact()) draw_force_arrow(projection * view, size, latest.hip, device.last_force(), latest.depth_mm, 15.0f * scale);
+    if (latest.in_contact())
+      draw_force_arrow(projection * view, size, latest.hip, device.last_force(), latest.depth_mm,
+                       15.0f * scale);
     ImGui::Render();
 
     apply_materials(scene, materials, haptics, device, renderer);
-    draw.deformation = std::array{gl::Deformation::gpu, gl::Deformation::cpu_naive, gl::Deformation::none}[std::size_t(panel.deformation)];
+    draw.deformation = std::array{gl::Deformation::gpu, gl::Deformation::cpu_naive,
+                                  gl::Deformation::none}[std::size_t(panel.deformation)];
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, width, height);
     glClearColor(0.08f, 0.09f, 0.11f, 1.0f);
@@ -323,7 +336,8 @@ int run_view(const ViewOptions& options) {
       std::snprintf(name, sizeof name, "palpate-view-%04d.png", frame);
       save_screenshot(name, width, height);
     }
-    if (last_frame && !options.screenshot.empty() && !save_screenshot(options.screenshot, width, height)) return 1;
+    if (last_frame && !options.screenshot.empty() && !save_screenshot(options.screenshot, width, height))
+      return 1;
     window.swap_buffers();
     if (last_frame) window.request_close();
   }
@@ -339,13 +353,19 @@ int run_view(const ViewOptions& options) {
 void add_view_command(CLI::App& app) {
   auto options = std::make_shared<ViewOptions>();
   CLI::App* view = app.add_subcommand("view", "Interactive viewer: the mouse drives a virtual haptic device");
-  view->add_option("--scene", options->scene_file, "Scene file (TOML); default: the built-in brain and skin phantoms")
+  view->add_option("--scene", options->scene_file,
+                   "Scene file (TOML); default: the built-in brain and skin phantoms")
       ->check(CLI::ExistingFile);
-  view->add_option("--width", options->width, "Window width")->capture_default_str()->check(CLI::Range(64, 8192));
-  view->add_option("--height", options->height, "Window height")->capture_default_str()->check(CLI::Range(64, 8192));
+  view->add_option("--width", options->width, "Window width")
+      ->capture_default_str()
+      ->check(CLI::Range(64, 8192));
+  view->add_option("--height", options->height, "Window height")
+      ->capture_default_str()
+      ->check(CLI::Range(64, 8192));
   view->add_option("--frames", options->frames, "Quit after this many frames")->check(CLI::PositiveNumber);
   view->add_option("--screenshot", options->screenshot, "With --frames: save the last frame to this PNG");
-  view->add_option("--press-depth", options->press_depth_mm, "Start with the tip this many mm under the surface at the centre")
+  view->add_option("--press-depth", options->press_depth_mm,
+                   "Start with the tip this many mm under the surface at the centre")
       ->check(CLI::Range(0.0, 30.0));
   on_selected(view, [options] { return run_view(*options); });
 }

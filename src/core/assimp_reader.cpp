@@ -1,19 +1,18 @@
 #include "core/assimp_reader.hpp"
 
-#include <assimp/Importer.hpp>
 #include <assimp/material.h>
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
 #include <algorithm>
+#include <assimp/Importer.hpp>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <stdexcept>
 #include <utility>
 
 #include "core/weld.hpp"
 #include "palpate/core/error.hpp"
-
-#include <stdexcept>
 
 // Debian's assimp 5.2 is built with its internal assertions on (ASSIMP_BUILD_DEBUG), and a failed
 // one aborts the process: a PLY file cut short trips one in the triangulation step. This definition
@@ -47,11 +46,13 @@ struct Collector {
     aiMatrix3x3 normal_matrix(model);
     normal_matrix.Inverse().Transpose();
     const bool mirrored = aiMatrix3x3(model).Determinant() < 0.0f;
-    for (unsigned i = 0; i < node.mNumMeshes; ++i) add_mesh(*scene.mMeshes[node.mMeshes[i]], node, model, normal_matrix, mirrored);
+    for (unsigned i = 0; i < node.mNumMeshes; ++i)
+      add_mesh(*scene.mMeshes[node.mMeshes[i]], node, model, normal_matrix, mirrored);
     for (unsigned i = 0; i < node.mNumChildren; ++i) visit(*node.mChildren[i], model);
   }
 
-  void add_mesh(const aiMesh& in, const aiNode& node, const aiMatrix4x4& model, const aiMatrix3x3& normal_matrix, bool mirrored) {
+  void add_mesh(const aiMesh& in, const aiNode& node, const aiMatrix4x4& model,
+                const aiMatrix3x3& normal_matrix, bool mirrored) {
     if (!(in.mPrimitiveTypes & aiPrimitiveType_TRIANGLE)) return;
     SceneObject object;
     object.name = in.mName.length > 0 ? in.mName.C_Str() : node.mName.C_Str();
@@ -64,7 +65,8 @@ struct Collector {
     }
     Mesh& mesh = object.mesh;
     mesh.positions.reserve(in.mNumVertices);
-    for (unsigned v = 0; v < in.mNumVertices; ++v) mesh.positions.push_back(transform_point(model, in.mVertices[v]));
+    for (unsigned v = 0; v < in.mNumVertices; ++v)
+      mesh.positions.push_back(transform_point(model, in.mVertices[v]));
     if (in.HasNormals()) {
       mesh.normals.reserve(in.mNumVertices);
       for (unsigned v = 0; v < in.mNumVertices; ++v) {
@@ -75,7 +77,8 @@ struct Collector {
     }
     if (in.HasVertexColors(0)) {
       mesh.colors.reserve(in.mNumVertices);
-      for (unsigned v = 0; v < in.mNumVertices; ++v) mesh.colors.emplace_back(in.mColors[0][v].r, in.mColors[0][v].g, in.mColors[0][v].b);
+      for (unsigned v = 0; v < in.mNumVertices; ++v)
+        mesh.colors.emplace_back(in.mColors[0][v].r, in.mColors[0][v].g, in.mColors[0][v].b);
     }
     mesh.indices.reserve(std::size_t{in.mNumFaces} * 3);
     for (unsigned f = 0; f < in.mNumFaces; ++f) {
@@ -84,14 +87,16 @@ struct Collector {
         ++skipped_faces;
         continue;
       }
-      mesh.indices.insert(mesh.indices.end(), {face.mIndices[0], mirrored ? face.mIndices[2] : face.mIndices[1],
-                                               mirrored ? face.mIndices[1] : face.mIndices[2]});
+      mesh.indices.insert(mesh.indices.end(),
+                          {face.mIndices[0], mirrored ? face.mIndices[2] : face.mIndices[1],
+                           mirrored ? face.mIndices[1] : face.mIndices[2]});
     }
     for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
       const glm::vec3 p = mesh.positions[v];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-        throw Error(input.file, 0, "mesh '" + object.name + "': vertex " + std::to_string(v) +
-                                       " has a non-finite coordinate (NaN or Inf)");
+        throw Error(input.file, 0,
+                    "mesh '" + object.name + "': vertex " + std::to_string(v) +
+                        " has a non-finite coordinate (NaN or Inf)");
       }
     }
     if (input.weld_positions) {
@@ -101,7 +106,8 @@ struct Collector {
     }
     if (mesh.normals.empty()) {
       compute_vertex_normals(mesh);
-    } else if (std::any_of(mesh.normals.begin(), mesh.normals.end(), [](glm::vec3 n) { return n == glm::vec3(0.0f); })) {
+    } else if (std::any_of(mesh.normals.begin(), mesh.normals.end(),
+                           [](glm::vec3 n) { return n == glm::vec3(0.0f); })) {
       // Zero normals in the file (or assimp's) get the area-weighted ones.
       Mesh computed = mesh;
       compute_vertex_normals(computed);
@@ -123,19 +129,22 @@ Scene read_assimp_model(const AssimpInput& input, const LoadOptions& options) {
   // No aiProcess_JoinIdenticalVertices: palpate welds after import (weld.hpp), exactly and in
   // linear time, where assimp's step took most of a large PLY's load.
   const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure;
-  const aiScene* scene =
-      input.memory ? importer.ReadFileFromMemory(input.memory->data(), input.memory->size(), flags, input.format_hint.c_str())
-                   : importer.ReadFile(input.file.string(), flags);
+  const aiScene* scene = input.memory
+                             ? importer.ReadFileFromMemory(input.memory->data(), input.memory->size(), flags,
+                                                           input.format_hint.c_str())
+                             : importer.ReadFile(input.file.string(), flags);
   if (!scene) {
     std::string reason = importer.GetErrorString();
     while (!reason.empty() && (reason.back() == '\n' || reason.back() == ' ')) reason.pop_back();
     if (reason.find("mNumMeshes is 0") != std::string::npos) {
       // assimp's validation words for a file it parsed but found no meshes in.
-      throw Error(input.file, 0,
-                  "assimp found no triangle meshes in it (its importers skip nodes they do not support; the X3D "
-                  "importer also drops everything inside Collision nodes)");
+      throw Error(
+          input.file, 0,
+          "assimp found no triangle meshes in it (its importers skip nodes they do not support; the X3D "
+          "importer also drops everything inside Collision nodes)");
     }
-    throw Error(input.file, 0, "assimp could not read it: " + (reason.empty() ? std::string("no reason given") : reason));
+    throw Error(input.file, 0,
+                "assimp could not read it: " + (reason.empty() ? std::string("no reason given") : reason));
   }
   if (!scene->mRootNode) throw Error(input.file, 0, "assimp returned a scene without nodes");
   Collector collector{input, *scene, {}};

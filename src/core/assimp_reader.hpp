@@ -9,10 +9,10 @@
 namespace palpate::detail {
 
 struct AssimpInput {
-  std::filesystem::path file;     // named in errors; read from disk when `memory` is null
+  std::filesystem::path file;           // named in errors; read from disk when `memory` is null
   const std::string* memory = nullptr;  // the decompressed content of a gzipped file
-  std::string format_hint;        // extension without the dot, for `memory` ("x3d")
-  bool weld_positions = false;    // OBJ and STL: one vertex per distinct position (see load.hpp)
+  std::string format_hint;              // extension without the dot, for `memory` ("x3d")
+  bool weld_positions = false;          // OBJ and STL: one vertex per distinct position (see load.hpp)
 };
 
 Scene read_assimp_model(const AssimpInput& input, const LoadOptions& options);

@@ -38,8 +38,9 @@ double hull_radius(glm::dvec3 u) {
   const double half_width = 70.5 - 6.0 * smoothstep(-0.1, 0.9, u.y);
   const double half_length = 82.5;
   const double half_height = u.z > 0.0 ? 58.0 : 72.0;  // the bottom is cut by the base below
-  const double inv_ellipsoid = std::sqrt(u.x * u.x / (half_width * half_width) + u.y * u.y / (half_length * half_length) +
-                                         u.z * u.z / (half_height * half_height));
+  const double inv_ellipsoid =
+      std::sqrt(u.x * u.x / (half_width * half_width) + u.y * u.y / (half_length * half_length) +
+                u.z * u.z / (half_height * half_height));
   // The base: a floor whose depth below the centre varies, lowest under the temporal lobes (at the sides,
   // a little in front of the middle), highest under the frontal lobes.
   const double side = std::abs(u.x) - 0.62, front = u.y - 0.12;
@@ -63,7 +64,9 @@ double fissure_presence(glm::dvec3 u) {
 }
 
 // Signed distance (mm, like x) from the midline, measured on the hull.
-double midline_distance(glm::dvec3 u, double hull) { return hull * std::asin(std::clamp(u.x, -1.0, 1.0)); }
+double midline_distance(glm::dvec3 u, double hull) {
+  return hull * std::asin(std::clamp(u.x, -1.0, 1.0));
+}
 
 // Rotates unit direction u by `angle` (rad) toward unit tangent t.
 glm::dvec3 move_on_sphere(glm::dvec3 u, glm::dvec3 t, double angle) {
@@ -78,14 +81,14 @@ struct FissureDesign {
 };
 
 struct SulcusDesign {
-  int wave_degree = 15;            // crest to crest about pi R / sqrt(l (l + 1)): 12 to 17 mm
+  int wave_degree = 15;  // crest to crest about pi R / sqrt(l (l + 1)): 12 to 17 mm
   std::uint64_t seed = 0x70616c70617465ull;
-  double depth_mm = 13.0;          // 10 to 13 mm, deeper where the wave is strong
+  double depth_mm = 13.0;  // 10 to 13 mm, deeper where the wave is strong
   // Bottom radius 1 mm, lip radius 1.2 mm, walls at 85 degrees, in phase units: a little wider on the
   // surface, where the wave's phase changes slower than the nominal wavenumber says (see read()).
   detail::SlotShape shape{1.0, 1.2, 85.0 * degrees};
-  double midline_free_mm = 11.0;   // no sulci this close to the midline where the fissure is...
-  double fade_in_mm = 6.0;         // ...then they deepen over this distance
+  double midline_free_mm = 11.0;  // no sulci this close to the midline where the fissure is...
+  double fade_in_mm = 6.0;        // ...then they deepen over this distance
   // Where the wave and its slope are both small its phase turns fast around a point, which would make
   // features finer than the mesh; this floor on the phase's cosine (a fraction of the typical amplitude)
   // smooths them into plain junctions of sulci.
@@ -112,7 +115,8 @@ class BrainShape {
     if (const double scale = sulcus_scale(midline_mm, presence); scale > 0.0) {
       const Reading reading = read(wave_(w));
       const double half_period = this->half_period(hull);
-      depth += sulcus_profile(scale * reading.depth_fraction, half_period).depth_at(reading.distance(half_period));
+      depth +=
+          sulcus_profile(scale * reading.depth_fraction, half_period).depth_at(reading.distance(half_period));
     }
     return hull - depth;
   }
@@ -127,9 +131,11 @@ class BrainShape {
     if (fissure_scale_ * presence <= 0.0 || off_axis <= 0.0) return u;  // the poles stay
     const double hull = hull_radius(u);
     const double midline_mm = midline_distance(u, hull);
-    const detail::SlotProfile::Place place = fissure_profile(presence).place(std::abs(midline_mm), hull * pi / 2.0);
+    const detail::SlotProfile::Place place =
+        fissure_profile(presence).place(std::abs(midline_mm), hull * pi / 2.0);
     const double angle = std::copysign(place.lateral, midline_mm) / hull;
-    return std::sin(angle) * glm::dvec3(1.0, 0.0, 0.0) + std::cos(angle) / off_axis * glm::dvec3(0.0, u.y, u.z);
+    return std::sin(angle) * glm::dvec3(1.0, 0.0, 0.0) +
+           std::cos(angle) / off_axis * glm::dvec3(0.0, u.y, u.z);
   }
 
   // Sampling: where a direction u goes across the sulcus it lies beside. Reading the wave as a plane
@@ -164,15 +170,19 @@ class BrainShape {
     const double slope = glm::length(wave.gradient) / wave_.wavenumber();
     const double floor = sulci_.phase_floor * typical_amplitude_;
     const double strength = std::sqrt(wave.value * wave.value + slope * slope) / typical_amplitude_;
-    return {std::atan2(wave.value, std::sqrt(slope * slope + floor * floor)), 0.75 + 0.25 * std::min(1.0, strength)};
+    return {std::atan2(wave.value, std::sqrt(slope * slope + floor * floor)),
+            0.75 + 0.25 * std::min(1.0, strength)};
   }
 
-  double half_period(double hull) const { return pi / 2.0 / wave_.wavenumber() * hull; }  // mm, centre line to crest
+  double half_period(double hull) const {
+    return pi / 2.0 / wave_.wavenumber() * hull;
+  }  // mm, centre line to crest
 
   // Sulci fade out near the fissure, and at low resolution.
   double sulcus_scale(double midline_mm, double presence) const {
     const double near_fissure =
-        presence * (1.0 - smoothstep(sulci_.midline_free_mm, sulci_.midline_free_mm + sulci_.fade_in_mm, std::abs(midline_mm)));
+        presence * (1.0 - smoothstep(sulci_.midline_free_mm, sulci_.midline_free_mm + sulci_.fade_in_mm,
+                                     std::abs(midline_mm)));
     return sulcus_scale_ * (1.0 - near_fissure);
   }
 
@@ -255,8 +265,8 @@ void place_on_surface(Mesh& mesh, const BrainShape& shape, const std::vector<glm
 
 Mesh make_brain_phantom(std::size_t vertices) {
   if (vertices < phantom_min_vertices) {
-    throw Error("make_brain_phantom: need at least " + std::to_string(phantom_min_vertices) + " vertices, got " +
-                std::to_string(vertices));
+    throw Error("make_brain_phantom: need at least " + std::to_string(phantom_min_vertices) +
+                " vertices, got " + std::to_string(vertices));
   }
   Mesh mesh = make_sphere(1.0f, vertices);
   // Mean edge length on the hull (about 68 mm in radius) of a near-equilateral mesh with this many vertices.
@@ -272,8 +282,9 @@ Mesh make_brain_phantom(std::size_t vertices) {
   // Most of the way across the sulci: the full move turns more triangles over where the wave is not
   // locally a plane wave, and smoothing does the rest.
   place_on_surface(mesh, shape, ringed, folded, 0.7);
-  detail::relax_radial_mesh(mesh, glm::dvec3(brain_phantom_star_centre), [&shape](glm::dvec3 w) { return shape.radius(w); }, 4,
-                            25.0 * degrees);
+  detail::relax_radial_mesh(
+      mesh, glm::dvec3(brain_phantom_star_centre), [&shape](glm::dvec3 w) { return shape.radius(w); }, 4,
+      25.0 * degrees);
   compute_vertex_normals(mesh);
   return mesh;
 }

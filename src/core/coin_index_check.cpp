@@ -6,9 +6,9 @@
 #include <Inventor/VRMLnodes/SoVRMLNormal.h>
 #include <Inventor/VRMLnodes/SoVRMLTextureCoordinate.h>
 #include <Inventor/elements/SoCoordinateElement.h>
+#include <Inventor/elements/SoMaterialBindingElement.h>
 #include <Inventor/elements/SoNormalBindingElement.h>
 #include <Inventor/elements/SoNormalElement.h>
-#include <Inventor/elements/SoMaterialBindingElement.h>
 #include <Inventor/nodes/SoFaceSet.h>
 #include <Inventor/nodes/SoIndexedFaceSet.h>
 #include <Inventor/nodes/SoIndexedTriangleStripSet.h>
@@ -24,16 +24,20 @@ namespace {
 
 using Result = std::optional<std::string>;
 
-std::string entries(std::int64_t n, const char* what) { return std::to_string(n) + " " + what; }
+std::string entries(std::int64_t n, const char* what) {
+  return std::to_string(n) + " " + what;
+}
 
 // Every entry of `list` must be -1 (a polygon's end, where `separators`) or an index below `count`.
-Result check_range(const SoMFInt32& list, std::int32_t count, const char* list_name, const char* target, bool separators) {
+Result check_range(const SoMFInt32& list, std::int32_t count, const char* list_name, const char* target,
+                   bool separators) {
   const std::int32_t* values = list.getValues(0);
   for (int i = 0; i < list.getNum(); ++i) {
     const std::int32_t v = values[i];
     if ((v == -1 && separators) || (v >= 0 && v < count)) continue;
-    return std::string(list_name) + "[" + std::to_string(i) + "] is " + std::to_string(v) + ", but " + target +
-           " has " + entries(count, "entries") + (separators ? " (valid: 0.." + std::to_string(count - 1) + " or -1)" : "");
+    return std::string(list_name) + "[" + std::to_string(i) + "] is " + std::to_string(v) + ", but " +
+           target + " has " + entries(count, "entries") +
+           (separators ? " (valid: 0.." + std::to_string(count - 1) + " or -1)" : "");
   }
   return std::nullopt;
 }
@@ -60,21 +64,21 @@ int polygon_count(const SoMFInt32& coord_index) {
 
 // VRML97: colours and normals are per vertex (through their own index list, or through coordIndex
 // when it is empty) or per face (through their index list, or in face order).
-Result check_vrml_attribute(const SoVRMLIndexedFaceSet& ifs, std::int32_t count, const SoMFInt32& index, bool per_vertex,
-                            const char* index_name, const char* target) {
+Result check_vrml_attribute(const SoVRMLIndexedFaceSet& ifs, std::int32_t count, const SoMFInt32& index,
+                            bool per_vertex, const char* index_name, const char* target) {
   const int polygons = polygon_count(ifs.coordIndex);
   if (per_vertex) {
     if (index.getNum() == 0) {
       const std::int32_t needed = max_index(ifs.coordIndex) + 1;
       if (needed > count) {
-        return std::string("coordIndex uses ") + target + " " + std::to_string(needed - 1) + " (" + index_name +
-               " is empty), but " + target + " has " + entries(count, "entries");
+        return std::string("coordIndex uses ") + target + " " + std::to_string(needed - 1) + " (" +
+               index_name + " is empty), but " + target + " has " + entries(count, "entries");
       }
       return std::nullopt;
     }
     if (index.getNum() < ifs.coordIndex.getNum()) {
-      return std::string(index_name) + " has " + entries(index.getNum(), "entries") + ", fewer than coordIndex's " +
-             std::to_string(ifs.coordIndex.getNum());
+      return std::string(index_name) + " has " + entries(index.getNum(), "entries") +
+             ", fewer than coordIndex's " + std::to_string(ifs.coordIndex.getNum());
     }
     return check_range(index, count, index_name, target, true);
   }
@@ -85,7 +89,8 @@ Result check_vrml_attribute(const SoVRMLIndexedFaceSet& ifs, std::int32_t count,
     return std::nullopt;
   }
   if (index.getNum() < polygons) {
-    return std::string(index_name) + " has " + entries(index.getNum(), "entries") + " for " + entries(polygons, "faces");
+    return std::string(index_name) + " has " + entries(index.getNum(), "entries") + " for " +
+           entries(polygons, "faces");
   }
   return check_range(index, count, index_name, target, false);
 }
@@ -97,19 +102,23 @@ Result check_vrml_face_set(const SoVRMLIndexedFaceSet& ifs) {
   if (Result r = check_range(ifs.coordIndex, points, "coordIndex", "Coordinate.point", true)) return r;
   if (const SoNode* n = ifs.normal.getValue(); n && n->isOfType(SoVRMLNormal::getClassTypeId())) {
     const std::int32_t count = static_cast<const SoVRMLNormal*>(n)->vector.getNum();
-    if (Result r = check_vrml_attribute(ifs, count, ifs.normalIndex, ifs.normalPerVertex.getValue(), "normalIndex", "Normal.vector")) {
+    if (Result r = check_vrml_attribute(ifs, count, ifs.normalIndex, ifs.normalPerVertex.getValue(),
+                                        "normalIndex", "Normal.vector")) {
       return r;
     }
   }
   if (const SoNode* c = ifs.color.getValue(); c && c->isOfType(SoVRMLColor::getClassTypeId())) {
     const std::int32_t count = static_cast<const SoVRMLColor*>(c)->color.getNum();
-    if (Result r = check_vrml_attribute(ifs, count, ifs.colorIndex, ifs.colorPerVertex.getValue(), "colorIndex", "Color.color")) {
+    if (Result r = check_vrml_attribute(ifs, count, ifs.colorIndex, ifs.colorPerVertex.getValue(),
+                                        "colorIndex", "Color.color")) {
       return r;
     }
   }
-  if (const SoNode* t = ifs.texCoord.getValue(); t && t->isOfType(SoVRMLTextureCoordinate::getClassTypeId())) {
+  if (const SoNode* t = ifs.texCoord.getValue();
+      t && t->isOfType(SoVRMLTextureCoordinate::getClassTypeId())) {
     const std::int32_t count = static_cast<const SoVRMLTextureCoordinate*>(t)->point.getNum();
-    if (Result r = check_vrml_attribute(ifs, count, ifs.texCoordIndex, true, "texCoordIndex", "TextureCoordinate.point")) {
+    if (Result r = check_vrml_attribute(ifs, count, ifs.texCoordIndex, true, "texCoordIndex",
+                                        "TextureCoordinate.point")) {
       return r;
     }
   }
@@ -129,7 +138,8 @@ InventorCounts inventor_counts(const SoVertexShape& shape, SoState& state) {
   counts.coordinates = SoCoordinateElement::getInstance(&state)->getNum();
   counts.normals = SoNormalElement::getInstance(&state)->getNum();
   counts.normal_binding = SoNormalBindingElement::get(&state);
-  if (const SoNode* vp = shape.vertexProperty.getValue(); vp && vp->isOfType(SoVertexProperty::getClassTypeId())) {
+  if (const SoNode* vp = shape.vertexProperty.getValue();
+      vp && vp->isOfType(SoVertexProperty::getClassTypeId())) {
     const auto* property = static_cast<const SoVertexProperty*>(vp);
     if (property->vertex.getNum() > 0) counts.coordinates = property->vertex.getNum();
     if (property->normal.getNum() > 0) {
@@ -140,21 +150,27 @@ InventorCounts inventor_counts(const SoVertexShape& shape, SoState& state) {
   return counts;
 }
 
-bool is_default_index(const SoMFInt32& list) { return list.getNum() == 0 || (list.getNum() == 1 && list[0] == -1); }
+bool is_default_index(const SoMFInt32& list) {
+  return list.getNum() == 0 || (list.getNum() == 1 && list[0] == -1);
+}
 
 Result check_inventor_indexed(const SoIndexedShape& shape, SoState& state, bool faces) {
   const InventorCounts counts = inventor_counts(shape, state);
-  if (Result r = check_range(shape.coordIndex, counts.coordinates, "coordIndex", "the current Coordinate3", true)) return r;
+  if (Result r =
+          check_range(shape.coordIndex, counts.coordinates, "coordIndex", "the current Coordinate3", true))
+    return r;
   if (counts.normals > 0 && counts.normal_binding != SoNormalBindingElement::OVERALL) {
     const bool indexed = counts.normal_binding == SoNormalBindingElement::PER_VERTEX_INDEXED ||
                          counts.normal_binding == SoNormalBindingElement::PER_FACE_INDEXED ||
                          counts.normal_binding == SoNormalBindingElement::PER_PART_INDEXED;
     if (indexed && !is_default_index(shape.normalIndex)) {
-      if (Result r = check_range(shape.normalIndex, counts.normals, "normalIndex", "the current Normal", true)) return r;
+      if (Result r =
+              check_range(shape.normalIndex, counts.normals, "normalIndex", "the current Normal", true))
+        return r;
       if (counts.normal_binding == SoNormalBindingElement::PER_VERTEX_INDEXED &&
           shape.normalIndex.getNum() < shape.coordIndex.getNum()) {
-        return "normalIndex has " + entries(shape.normalIndex.getNum(), "entries") + ", fewer than coordIndex's " +
-               std::to_string(shape.coordIndex.getNum());
+        return "normalIndex has " + entries(shape.normalIndex.getNum(), "entries") +
+               ", fewer than coordIndex's " + std::to_string(shape.coordIndex.getNum());
       }
     } else if (counts.normal_binding == SoNormalBindingElement::PER_VERTEX_INDEXED) {
       if (max_index(shape.coordIndex) >= counts.normals) {
@@ -168,16 +184,17 @@ Result check_inventor_indexed(const SoIndexedShape& shape, SoState& state, bool 
     }
   }
   const int material_binding = SoMaterialBindingElement::get(&state);
-  if (!is_default_index(shape.materialIndex) && material_binding == SoMaterialBindingElement::PER_VERTEX_INDEXED &&
+  if (!is_default_index(shape.materialIndex) &&
+      material_binding == SoMaterialBindingElement::PER_VERTEX_INDEXED &&
       shape.materialIndex.getNum() < shape.coordIndex.getNum()) {
-    return "materialIndex has " + entries(shape.materialIndex.getNum(), "entries") + ", fewer than coordIndex's " +
-           std::to_string(shape.coordIndex.getNum());
+    return "materialIndex has " + entries(shape.materialIndex.getNum(), "entries") +
+           ", fewer than coordIndex's " + std::to_string(shape.coordIndex.getNum());
   }
   return std::nullopt;
 }
 
-Result check_inventor_sequential(const SoNonIndexedShape& shape, const SoMFInt32* vertices_per_part, std::int32_t fixed_total,
-                                 SoState& state) {
+Result check_inventor_sequential(const SoNonIndexedShape& shape, const SoMFInt32* vertices_per_part,
+                                 std::int32_t fixed_total, SoState& state) {
   const InventorCounts counts = inventor_counts(shape, state);
   std::int64_t total = fixed_total;
   if (vertices_per_part) {

@@ -64,7 +64,9 @@ std::string file_type_name(const SoNode* node) {
   return name;
 }
 
-glm::vec3 to_glm(const SbVec3f& v) { return {v[0], v[1], v[2]}; }
+glm::vec3 to_glm(const SbVec3f& v) {
+  return {v[0], v[1], v[2]};
+}
 
 // Collects the triangles of each drawn shape instance into one SceneObject.
 class ShapeCollector {
@@ -98,8 +100,8 @@ class ShapeCollector {
   static SoCallbackAction::Response pre_shape(void* self, SoCallbackAction* action, const SoNode* node) {
     return static_cast<ShapeCollector*>(self)->begin_shape(*action, node);
   }
-  static void triangle(void* self, SoCallbackAction* action, const SoPrimitiveVertex* a, const SoPrimitiveVertex* b,
-                       const SoPrimitiveVertex* c) {
+  static void triangle(void* self, SoCallbackAction* action, const SoPrimitiveVertex* a,
+                       const SoPrimitiveVertex* b, const SoPrimitiveVertex* c) {
     static_cast<ShapeCollector*>(self)->add_triangle(*action, *a, *b, *c);
   }
   static SoCallbackAction::Response post_shape(void* self, SoCallbackAction*, const SoNode*) {
@@ -114,9 +116,9 @@ class ShapeCollector {
       ++skipped_text;  // glyph triangles depend on the fonts found at run time: not a model's geometry
       return SoCallbackAction::PRUNE;
     }
-    if (is_any_of(node, {SoLineSet::getClassTypeId(), SoIndexedLineSet::getClassTypeId(), SoPointSet::getClassTypeId(),
-                         SoIndexedPointSet::getClassTypeId(), SoVRMLIndexedLineSet::getClassTypeId(),
-                         SoVRMLPointSet::getClassTypeId()})) {
+    if (is_any_of(node, {SoLineSet::getClassTypeId(), SoIndexedLineSet::getClassTypeId(),
+                         SoPointSet::getClassTypeId(), SoIndexedPointSet::getClassTypeId(),
+                         SoVRMLIndexedLineSet::getClassTypeId(), SoVRMLPointSet::getClassTypeId()})) {
       ++skipped_lines;
       return SoCallbackAction::PRUNE;
     }
@@ -138,13 +140,14 @@ class ShapeCollector {
       current_.coin_normals = static_cast<const SoVRMLVertexShape*>(node)->normal.getValue() != nullptr;
     } else if (inventor_vertex_shape) {
       const SoNode* vp = static_cast<const SoVertexShape*>(node)->vertexProperty.getValue();
-      current_.coin_normals =
-          SoNormalElement::getInstance(state)->getNum() > 0 ||
-          (vp && vp->isOfType(SoVertexProperty::getClassTypeId()) && static_cast<const SoVertexProperty*>(vp)->normal.getNum() > 0);
+      current_.coin_normals = SoNormalElement::getInstance(state)->getNum() > 0 ||
+                              (vp && vp->isOfType(SoVertexProperty::getClassTypeId()) &&
+                               static_cast<const SoVertexProperty*>(vp)->normal.getNum() > 0);
     } else {
       current_.coin_normals = true;  // primitives (Sphere, Cone, ...): Coin's analytic normals
     }
-    if (const SoField* crease = node->getField("creaseAngle"); crease && crease->isOfType(SoSFFloat::getClassTypeId())) {
+    if (const SoField* crease = node->getField("creaseAngle");
+        crease && crease->isOfType(SoSFFloat::getClassTypeId())) {
       current_.crease_angle = static_cast<const SoSFFloat*>(crease)->getValue();
     } else {
       current_.crease_angle = SoCreaseAngleElement::get(state);
@@ -181,8 +184,9 @@ class ShapeCollector {
       }
       const int index = v->getMaterialIndex();
       if (index < 0 || index >= colors) {
-        error.emplace(file_, 0, "shape " + current_.name + ": colour index " + std::to_string(index) +
-                                     " is out of range (" + std::to_string(colors) + " colours)");
+        error.emplace(file_, 0,
+                      "shape " + current_.name + ": colour index " + std::to_string(index) +
+                          " is out of range (" + std::to_string(colors) + " colours)");
         return;
       }
       const glm::vec3 color = to_glm(SoLazyElement::getDiffuse(state, index));
@@ -199,8 +203,9 @@ class ShapeCollector {
     for (std::size_t i = 0; i < current_.soup.positions.size(); ++i) {
       const glm::vec3 p = current_.soup.positions[i];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
-        error.emplace(file_, 0, "shape " + current_.name + ": triangle " + std::to_string(i / 3) +
-                                     " has a non-finite coordinate (NaN or Inf) after its transforms");
+        error.emplace(file_, 0,
+                      "shape " + current_.name + ": triangle " + std::to_string(i / 3) +
+                          " has a non-finite coordinate (NaN or Inf) after its transforms");
         return SoCallbackAction::ABORT;
       }
     }
@@ -288,7 +293,8 @@ SoSeparator* read_scene_graph(CoinSession& coin, std::string text, const std::fi
 
 }  // namespace
 
-Scene read_coin_model(const std::string& text, const std::filesystem::path& file, const LoadOptions& options) {
+Scene read_coin_model(const std::string& text, const std::filesystem::path& file,
+                      const LoadOptions& options) {
   CoinSession coin;
   SoSeparator* root = read_scene_graph(coin, text, file, options);
   root->ref();

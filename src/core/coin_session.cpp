@@ -25,7 +25,8 @@ CoinSession::ReadError parse_read_error(const std::string& text) {
     error.line = std::atoi(error.message.c_str() + at + located.size());  // atoi skips the padding
     error.message.erase(at);
   }
-  while (!error.message.empty() && std::isspace(static_cast<unsigned char>(error.message.back()))) error.message.pop_back();
+  while (!error.message.empty() && std::isspace(static_cast<unsigned char>(error.message.back())))
+    error.message.pop_back();
   return error;
 }
 
@@ -51,7 +52,8 @@ CoinSession::~CoinSession() {
 }
 
 void CoinSession::on_read_error(const SoError* error, void* session) {
-  static_cast<CoinSession*>(session)->read_errors.push_back(parse_read_error(error->getDebugString().getString()));
+  static_cast<CoinSession*>(session)->read_errors.push_back(
+      parse_read_error(error->getDebugString().getString()));
 }
 
 void CoinSession::on_other_error(const SoError* error, void* session) {

@@ -15,8 +15,8 @@ namespace palpate::detail {
 class CoinSession {
  public:
   struct ReadError {
-    int line = 0;          // 0 where Coin gave none
-    std::string message;   // Coin's own words, without its "Coin read error:" prefix and location
+    int line = 0;         // 0 where Coin gave none
+    std::string message;  // Coin's own words, without its "Coin read error:" prefix and location
   };
 
   CoinSession();

@@ -14,8 +14,12 @@ namespace {
 // Corner table (Rossignac): corner c is vertex indices[c] of triangle c / 3; the edge facing c runs
 // from corner next(c) to corner prev(c); opposite[c] is the corner facing the same edge in the other
 // triangle.
-std::uint32_t next(std::uint32_t c) { return c % 3 == 2 ? c - 2 : c + 1; }
-std::uint32_t prev(std::uint32_t c) { return c % 3 == 0 ? c + 2 : c - 1; }
+std::uint32_t next(std::uint32_t c) {
+  return c % 3 == 2 ? c - 2 : c + 1;
+}
+std::uint32_t prev(std::uint32_t c) {
+  return c % 3 == 0 ? c + 2 : c - 1;
+}
 
 }  // namespace
 
@@ -56,7 +60,9 @@ double cotangent(glm::dvec3 apex, glm::dvec3 a, glm::dvec3 b) {
   return glm::dot(e1, e2) / glm::length(glm::cross(e1, e2));
 }
 
-glm::dvec3 unit_normal(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) { return glm::normalize(glm::cross(b - a, c - a)); }
+glm::dvec3 unit_normal(glm::dvec3 a, glm::dvec3 b, glm::dvec3 c) {
+  return glm::normalize(glm::cross(b - a, c - a));
+}
 
 // True when (a, b, c) turns counter-clockwise seen from the centre, by a margin relative to its size so
 // that float rounding of the stored positions cannot change the verdict.

@@ -43,8 +43,9 @@ std::string gunzip(const std::string& compressed, const std::filesystem::path& f
     if (status == Z_BUF_ERROR) {
       const auto consumed = stream.total_in;
       inflateEnd(&stream);
-      throw Error(file, 0,
-                  "gzip data ends early after " + std::to_string(consumed) + " compressed bytes (truncated file?)");
+      throw Error(
+          file, 0,
+          "gzip data ends early after " + std::to_string(consumed) + " compressed bytes (truncated file?)");
     }
     const std::string reason = stream.msg ? stream.msg : zError(status);
     inflateEnd(&stream);

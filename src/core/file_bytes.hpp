@@ -7,7 +7,7 @@
 namespace palpate::detail {
 
 struct FileBytes {
-  std::string bytes;        // the file's content, decompressed when it was gzip
+  std::string bytes;  // the file's content, decompressed when it was gzip
   bool was_gzip = false;
 };
 

@@ -57,7 +57,8 @@ class TemporaryCopy {
 template <class T>
 T element(const giiDataArray& array, long long row, int column, long long rows, int columns) {
   const auto* values = static_cast<const T*>(array.data);
-  return array.ind_ord == GIFTI_IND_ORD_COL_MAJOR ? values[column * rows + row] : values[row * columns + column];
+  return array.ind_ord == GIFTI_IND_ORD_COL_MAJOR ? values[column * rows + row]
+                                                  : values[row * columns + column];
 }
 
 // giftiio reports malformed XML and bad base64 only on stderr, and then goes on with zeroed data;
@@ -74,13 +75,16 @@ void XMLCALL on_start(void* user, const XML_Char* name, const XML_Char** attribu
   if (std::strcmp(name, "DataArray") == 0) {
     check.base64_array = false;
     for (int i = 0; attributes[i]; i += 2) {
-      if (std::strcmp(attributes[i], "Encoding") == 0 && std::strstr(attributes[i + 1], "Base64")) check.base64_array = true;
+      if (std::strcmp(attributes[i], "Encoding") == 0 && std::strstr(attributes[i + 1], "Base64"))
+        check.base64_array = true;
     }
   }
   check.in_base64_data = check.base64_array && std::strcmp(name, "Data") == 0;
 }
 
-void XMLCALL on_end(void* user, const XML_Char*) { static_cast<XmlCheck*>(user)->in_base64_data = false; }
+void XMLCALL on_end(void* user, const XML_Char*) {
+  static_cast<XmlCheck*>(user)->in_base64_data = false;
+}
 
 void XMLCALL on_text(void* user, const XML_Char* text, int length) {
   auto& check = *static_cast<XmlCheck*>(user);
@@ -101,7 +105,8 @@ void check_xml(const std::string& content, const std::filesystem::path& file) {
   XML_SetUserData(check.parser, &check);
   XML_SetElementHandler(check.parser, on_start, on_end);
   XML_SetCharacterDataHandler(check.parser, on_text);
-  const bool ok = XML_Parse(check.parser, content.data(), static_cast<int>(content.size()), /*isFinal=*/1) == XML_STATUS_OK;
+  const bool ok = XML_Parse(check.parser, content.data(), static_cast<int>(content.size()), /*isFinal=*/1) ==
+                  XML_STATUS_OK;
   const int line = static_cast<int>(XML_GetCurrentLineNumber(check.parser));
   const std::string reason = ok ? "" : XML_ErrorString(XML_GetErrorCode(check.parser));
   XML_ParserFree(check.parser);
@@ -118,8 +123,10 @@ const giiDataArray* find_array(const gifti_image& image, int intent) {
 
 void require_n_by_3(const giiDataArray& array, const char* what, const std::filesystem::path& file) {
   if (array.num_dim != 2 || array.dims[1] != 3 || array.dims[0] <= 0 || !array.data) {
-    throw Error(file, 0, std::string("GIfTI ") + what + " array is not N x 3 (" + std::to_string(array.num_dim) +
-                             " dimensions, " + std::to_string(array.dims[0]) + " x " + std::to_string(array.dims[1]) + ")");
+    throw Error(file, 0,
+                std::string("GIfTI ") + what + " array is not N x 3 (" + std::to_string(array.num_dim) +
+                    " dimensions, " + std::to_string(array.dims[0]) + " x " + std::to_string(array.dims[1]) +
+                    ")");
   }
 }
 
@@ -134,15 +141,17 @@ Scene read_gifti_model(const std::string& content, bool was_gzip, const std::fil
   gifti_set_verb(0);  // giftiio prints its complaints to stderr otherwise; palpate reports its own
   std::unique_ptr<gifti_image, ImageDeleter> image(gifti_read_image(read_path.c_str(), 1));
   if (!image) {
-    throw Error(file, 0,
-                "giftiio could not read this GIfTI file (malformed XML, a data array that does not decode, or an "
-                "encoding it does not support)");
+    throw Error(
+        file, 0,
+        "giftiio could not read this GIfTI file (malformed XML, a data array that does not decode, or an "
+        "encoding it does not support)");
   }
   const giiDataArray* points = find_array(*image, NIFTI_INTENT_POINTSET);
   const giiDataArray* triangles = find_array(*image, NIFTI_INTENT_TRIANGLE);
   if (!points || !triangles) {
-    throw Error(file, 0, std::string("GIfTI file has no ") + (!points ? "POINTSET" : "TRIANGLE") +
-                             " data array: it holds data on a surface, not the surface itself");
+    throw Error(file, 0,
+                std::string("GIfTI file has no ") + (!points ? "POINTSET" : "TRIANGLE") +
+                    " data array: it holds data on a surface, not the surface itself");
   }
   require_n_by_3(*points, "POINTSET", file);
   require_n_by_3(*triangles, "TRIANGLE", file);
@@ -158,11 +167,14 @@ Scene read_gifti_model(const std::string& content, bool was_gzip, const std::fil
       } else if (points->datatype == NIFTI_TYPE_FLOAT64) {
         value = element<double>(*points, v, axis, vertex_count, 3);
       } else {
-        throw Error(file, 0, std::string("GIfTI POINTSET has data type ") + gifti_datatype2str(points->datatype) +
-                                 "; palpate reads FLOAT32 and FLOAT64");
+        throw Error(file, 0,
+                    std::string("GIfTI POINTSET has data type ") + gifti_datatype2str(points->datatype) +
+                        "; palpate reads FLOAT32 and FLOAT64");
       }
       if (!std::isfinite(value)) {
-        throw Error(file, 0, "GIfTI POINTSET: vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or Inf)");
+        throw Error(
+            file, 0,
+            "GIfTI POINTSET: vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or Inf)");
       }
       mesh.positions[static_cast<std::size_t>(v)][axis] = static_cast<float>(value);
     }
@@ -177,12 +189,14 @@ Scene read_gifti_model(const std::string& content, bool was_gzip, const std::fil
       } else if (triangles->datatype == NIFTI_TYPE_UINT32) {
         index = element<std::uint32_t>(*triangles, t, corner, triangle_count, 3);
       } else {
-        throw Error(file, 0, std::string("GIfTI TRIANGLE has data type ") + gifti_datatype2str(triangles->datatype) +
-                                 "; palpate reads INT32 and UINT32");
+        throw Error(file, 0,
+                    std::string("GIfTI TRIANGLE has data type ") + gifti_datatype2str(triangles->datatype) +
+                        "; palpate reads INT32 and UINT32");
       }
       if (index < 0 || index >= vertex_count) {
-        throw Error(file, 0, "GIfTI TRIANGLE: triangle " + std::to_string(t) + " uses vertex " + std::to_string(index) +
-                                 ", but the POINTSET has " + std::to_string(vertex_count));
+        throw Error(file, 0,
+                    "GIfTI TRIANGLE: triangle " + std::to_string(t) + " uses vertex " +
+                        std::to_string(index) + ", but the POINTSET has " + std::to_string(vertex_count));
       }
       mesh.indices[static_cast<std::size_t>(t * 3 + corner)] = static_cast<std::uint32_t>(index);
     }
@@ -195,9 +209,10 @@ Scene read_gifti_model(const std::string& content, bool was_gzip, const std::fil
   for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
     const std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
     if (a == b || b == c || a == c) {
-      throw Error(file, 0, "GIfTI TRIANGLE: triangle " + std::to_string(t / 3) + " repeats a vertex (" +
-                               std::to_string(a) + ", " + std::to_string(b) + ", " + std::to_string(c) +
-                               "): its data array did not decode?");
+      throw Error(file, 0,
+                  "GIfTI TRIANGLE: triangle " + std::to_string(t / 3) + " repeats a vertex (" +
+                      std::to_string(a) + ", " + std::to_string(b) + ", " + std::to_string(c) +
+                      "): its data array did not decode?");
     }
   }
   compute_vertex_normals(mesh);

@@ -16,7 +16,8 @@ namespace palpate {
 namespace {
 
 std::string lower(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(), [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
   return text;
 }
 
@@ -36,24 +37,28 @@ std::string format_extension(const std::filesystem::path& file) {
 }
 
 constexpr std::string_view kSupported =
-    ".wrl .wrz .vrml .iv (Coin), .obj .ply .stl .off .gltf .glb .x3d (assimp), .gii (giftiio), each also gzipped";
+    ".wrl .wrz .vrml .iv (Coin), .obj .ply .stl .off .gltf .glb .x3d (assimp), .gii (giftiio), each also "
+    "gzipped";
 
 Scene read_model(const std::filesystem::path& file, const LoadOptions& options) {
   const std::string extension = format_extension(file);
   if (one_of(extension, {".nii", ".hdr", ".img", ".mgz", ".mgh", ".nrrd", ".mha", ".mhd"})) {
     if (!std::filesystem::exists(file)) throw Error(file, 0, "no such file");
-    throw Error(file, 0, "is a volume image (" + extension +
-                             "), not a surface mesh: palpate loads surfaces; extract an isosurface first");
+    throw Error(file, 0,
+                "is a volume image (" + extension +
+                    "), not a surface mesh: palpate loads surfaces; extract an isosurface first");
   }
   const detail::FileBytes content = detail::read_file_bytes(file);
   const std::string& text = content.bytes;
   // X3D's classic encoding looks like VRML97 but Coin rejects its header and its X3D-only nodes,
   // and assimp has no reader for it.
   if (extension == ".x3dv" || starts_with(text, "#X3D")) {
-    throw Error(file, 1, "X3D classic encoding (.x3dv) is not supported: Coin reads VRML97 but not X3D, and assimp "
-                         "has no reader for it (X3D XML, .x3d, is read through assimp)");
+    throw Error(file, 1,
+                "X3D classic encoding (.x3dv) is not supported: Coin reads VRML97 but not X3D, and assimp "
+                "has no reader for it (X3D XML, .x3d, is read through assimp)");
   }
-  if (one_of(extension, {".wrl", ".wrz", ".vrml", ".iv"}) || starts_with(text, "#VRML") || starts_with(text, "#Inventor")) {
+  if (one_of(extension, {".wrl", ".wrz", ".vrml", ".iv"}) || starts_with(text, "#VRML") ||
+      starts_with(text, "#Inventor")) {
     return detail::read_coin_model(text, file, options);
   }
   if (one_of(extension, {".obj", ".ply", ".stl", ".off", ".gltf", ".glb", ".x3d"})) {
@@ -68,12 +73,15 @@ Scene read_model(const std::filesystem::path& file, const LoadOptions& options) 
   }
   if (extension == ".gii") return detail::read_gifti_model(text, content.was_gzip, file);
   throw Error(file, 0,
-              "unknown model format '" + extension + "' and no VRML or Inventor header: palpate reads " + std::string(kSupported));
+              "unknown model format '" + extension + "' and no VRML or Inventor header: palpate reads " +
+                  std::string(kSupported));
 }
 
 }  // namespace
 
-Scene load_model(const std::filesystem::path& file) { return load_model(file, LoadOptions{}); }
+Scene load_model(const std::filesystem::path& file) {
+  return load_model(file, LoadOptions{});
+}
 
 Scene load_model(const std::filesystem::path& file, const LoadOptions& options) {
   Scene scene = read_model(file, options);
@@ -92,7 +100,9 @@ Scene load_model(const std::filesystem::path& file, const LoadOptions& options) 
   return scene;
 }
 
-Mesh load_mesh(const std::filesystem::path& file) { return load_mesh(file, LoadOptions{}); }
+Mesh load_mesh(const std::filesystem::path& file) {
+  return load_mesh(file, LoadOptions{});
+}
 
 Mesh load_mesh(const std::filesystem::path& file, const LoadOptions& options) {
   Scene scene = load_model(file, options);
@@ -114,7 +124,8 @@ void save_mesh(const Mesh& mesh, const std::filesystem::path& file) {
   } else if (extension == ".wrl") {
     detail::write_vrml97(mesh, file);
   } else {
-    throw Error(file, 0, "cannot write '" + extension + "': palpate writes .wrl (VRML97) and .ply (binary PLY)");
+    throw Error(file, 0,
+                "cannot write '" + extension + "': palpate writes .wrl (VRML97) and .ply (binary PLY)");
   }
 }
 

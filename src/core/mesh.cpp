@@ -23,7 +23,8 @@ void compute_vertex_normals(Mesh& mesh) {
   for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
     const std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
     // The cross product's length is twice the area: summing it weights each face by area.
-    const glm::vec3 face = glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
+    const glm::vec3 face =
+        glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
     mesh.normals[a] += face;
     mesh.normals[b] += face;
     mesh.normals[c] += face;
@@ -53,7 +54,9 @@ void append_mesh(Mesh& into, const Mesh& part, glm::vec3 fill_color) {
 
 namespace {
 
-bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(glm::vec3 v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 }  // namespace
 
@@ -77,8 +80,9 @@ void validate_mesh(const Mesh& mesh, const std::string& what) {
   }
   for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
     if (mesh.indices[i] >= mesh.positions.size()) {
-      throw Error(what + ": triangle " + std::to_string(i / 3) + " uses vertex " + std::to_string(mesh.indices[i]) +
-                  " but there are only " + std::to_string(mesh.positions.size()));
+      throw Error(what + ": triangle " + std::to_string(i / 3) + " uses vertex " +
+                  std::to_string(mesh.indices[i]) + " but there are only " +
+                  std::to_string(mesh.positions.size()));
     }
   }
 }

@@ -64,7 +64,8 @@ MeshTopology analyze_topology(const Mesh& mesh) {
     ++used;
     if (find_root(parent, v) == v) ++topo.components;
   }
-  topo.euler_characteristic = static_cast<long>(used) - static_cast<long>(topo.edges) + static_cast<long>(triangles);
+  topo.euler_characteristic =
+      static_cast<long>(used) - static_cast<long>(topo.edges) + static_cast<long>(triangles);
   return topo;
 }
 

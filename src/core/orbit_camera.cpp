@@ -9,11 +9,14 @@ namespace palpate {
 
 glm::vec3 OrbitCamera::eye() const noexcept {
   // yaw 0 puts the eye on +y looking back toward -y; +z is up.
-  const glm::vec3 from_target{std::sin(yaw) * std::cos(pitch), std::cos(yaw) * std::cos(pitch), std::sin(pitch)};
+  const glm::vec3 from_target{std::sin(yaw) * std::cos(pitch), std::cos(yaw) * std::cos(pitch),
+                              std::sin(pitch)};
   return target + distance_mm * from_target;
 }
 
-glm::mat4 OrbitCamera::view() const noexcept { return glm::lookAt(eye(), target, glm::vec3(0.0f, 0.0f, 1.0f)); }
+glm::mat4 OrbitCamera::view() const noexcept {
+  return glm::lookAt(eye(), target, glm::vec3(0.0f, 0.0f, 1.0f));
+}
 
 glm::mat4 OrbitCamera::projection(float aspect) const noexcept {
   const float near_mm = std::max(0.1f, distance_mm * 0.05f);
@@ -30,7 +33,8 @@ void OrbitCamera::zoom(float factor) noexcept {
 }
 
 OrbitCamera::Ray OrbitCamera::ray_through(glm::vec2 pixel, glm::vec2 viewport_size) const noexcept {
-  const glm::vec2 ndc{2.0f * (pixel.x + 0.5f) / viewport_size.x - 1.0f, 1.0f - 2.0f * (pixel.y + 0.5f) / viewport_size.y};
+  const glm::vec2 ndc{2.0f * (pixel.x + 0.5f) / viewport_size.x - 1.0f,
+                      1.0f - 2.0f * (pixel.y + 0.5f) / viewport_size.y};
   const glm::mat4 inverse = glm::inverse(projection(viewport_size.x / viewport_size.y) * view());
   const glm::vec4 near_point = inverse * glm::vec4(ndc, -1.0f, 1.0f);
   const glm::vec4 far_point = inverse * glm::vec4(ndc, 1.0f, 1.0f);

@@ -17,7 +17,9 @@ inline double smooth_min(double a, double b, double k) {
   const double h = std::max(k - std::abs(a - b), 0.0) / k;
   return std::min(a, b) - h * h * k * 0.25;
 }
-inline double smooth_max(double a, double b, double k) { return -smooth_min(-a, -b, k); }
+inline double smooth_max(double a, double b, double k) {
+  return -smooth_min(-a, -b, k);
+}
 
 // A bell of height 1 at d2 = 0 that vanishes for d2 >= 4, shaped like exp(-d2) near its top (d2: a
 // squared distance in units of the bell's width). Plain arithmetic, so the same on every machine.

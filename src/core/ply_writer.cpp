@@ -17,9 +17,12 @@ namespace {
 void put_u32(std::string& out, std::uint32_t word) {
   for (int shift = 0; shift < 32; shift += 8) out.push_back(static_cast<char>((word >> shift) & 0xffu));
 }
-void put_f32(std::string& out, float value) { put_u32(out, std::bit_cast<std::uint32_t>(value)); }
+void put_f32(std::string& out, float value) {
+  put_u32(out, std::bit_cast<std::uint32_t>(value));
+}
 void put_u8(std::string& out, float unit) {
-  out.push_back(static_cast<char>(static_cast<std::uint8_t>(std::lround(std::clamp(unit, 0.0f, 1.0f) * 255.0f))));
+  out.push_back(
+      static_cast<char>(static_cast<std::uint8_t>(std::lround(std::clamp(unit, 0.0f, 1.0f) * 255.0f))));
 }
 
 }  // namespace

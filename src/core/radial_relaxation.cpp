@@ -60,7 +60,8 @@ std::vector<glm::dvec3> targets(const Mesh& mesh, const Neighbours& n, const std
   if (!area_weighted) {
     for (std::uint32_t v = 0; v < mesh.vertex_count(); ++v) {
       if (!selected[v]) continue;
-      for (std::uint32_t i = n.start[v]; i < n.start[v + 1]; ++i) target[v] += glm::dvec3(mesh.positions[n.list[i]]);
+      for (std::uint32_t i = n.start[v]; i < n.start[v + 1]; ++i)
+        target[v] += glm::dvec3(mesh.positions[n.list[i]]);
       target[v] /= double(n.start[v + 1] - n.start[v]);
     }
     return target;

@@ -3,11 +3,12 @@
 // can name the line.
 #include "palpate/core/scene_file.hpp"
 
+#include <toml++/toml.h>
+
 #include <array>
 #include <glm/gtc/matrix_transform.hpp>
 #include <set>
 #include <string>
-#include <toml++/toml.h>
 
 #include "palpate/core/error.hpp"
 #include "palpate/core/load.hpp"
@@ -16,14 +17,16 @@
 namespace palpate {
 namespace {
 
-int line_of(const toml::node& node) { return static_cast<int>(node.source().begin.line); }
+int line_of(const toml::node& node) {
+  return static_cast<int>(node.source().begin.line);
+}
 
 class ObjectReader {
  public:
   ObjectReader(const std::filesystem::path& file, const toml::table& table) : file_(file), table_(table) {
-    static const std::set<std::string> known = {"name",     "mesh",          "translate",          "rotate_deg",
-                                                "sigma_mm", "stiffness_n_per_mm", "damping_ns_per_m", "color",
-                                                "touchable", "visible"};
+    static const std::set<std::string> known = {
+        "name",  "mesh",      "translate", "rotate_deg", "sigma_mm", "stiffness_n_per_mm", "damping_ns_per_m",
+        "color", "touchable", "visible"};
     for (const auto& [key, value] : table_) {
       if (!known.contains(std::string(key.str()))) {
         throw Error(file_, line_of(value), "unknown key '" + std::string(key.str()) + "' in [[object]]");
@@ -47,8 +50,9 @@ class ObjectReader {
     if (!node->is_number()) throw Error(file_, line_of(*node), std::string("'") + key + "' must be a number");
     const double value = node->value<double>().value();
     if (!(value >= min && value <= max)) {
-      throw Error(file_, line_of(*node), std::string("'") + key + "' = " + std::to_string(value) + " is out of range [" +
-                                             std::to_string(min) + ", " + std::to_string(max) + "]");
+      throw Error(file_, line_of(*node),
+                  std::string("'") + key + "' = " + std::to_string(value) + " is out of range [" +
+                      std::to_string(min) + ", " + std::to_string(max) + "]");
     }
     return static_cast<float>(value);
   }
@@ -56,7 +60,8 @@ class ObjectReader {
   bool flag(const char* key, bool fallback) const {
     const toml::node* node = table_.get(key);
     if (!node) return fallback;
-    if (!node->is_boolean()) throw Error(file_, line_of(*node), std::string("'") + key + "' must be true or false");
+    if (!node->is_boolean())
+      throw Error(file_, line_of(*node), std::string("'") + key + "' must be true or false");
     return node->value<bool>().value();
   }
 
@@ -70,11 +75,13 @@ class ObjectReader {
     glm::vec3 out;
     for (int i = 0; i < 3; ++i) {
       const toml::node& item = *array->get(static_cast<std::size_t>(i));
-      if (!item.is_number()) throw Error(file_, line_of(item), std::string("'") + key + "' must hold numbers");
+      if (!item.is_number())
+        throw Error(file_, line_of(item), std::string("'") + key + "' must hold numbers");
       const double value = item.value<double>().value();
       if (!(value >= min && value <= max)) {
-        throw Error(file_, line_of(item), std::string("'") + key + "' component " + std::to_string(value) +
-                                              " is out of range [" + std::to_string(min) + ", " + std::to_string(max) + "]");
+        throw Error(file_, line_of(item),
+                    std::string("'") + key + "' component " + std::to_string(value) + " is out of range [" +
+                        std::to_string(min) + ", " + std::to_string(max) + "]");
       }
       out[i] = static_cast<float>(value);
     }
@@ -113,7 +120,8 @@ Scene load_scene(const std::filesystem::path& file) {
     throw Error(file, static_cast<int>(e.source().begin.line), std::string(e.description()));
   }
   for (const auto& [key, value] : root) {
-    if (key.str() != "object") throw Error(file, line_of(value), "unknown key '" + std::string(key.str()) + "'");
+    if (key.str() != "object")
+      throw Error(file, line_of(value), "unknown key '" + std::string(key.str()) + "'");
   }
   const toml::array* objects = root["object"].as_array();
   if (!objects || objects->empty()) throw Error(file, 0, "the scene has no [[object]] tables");
@@ -152,13 +160,21 @@ Scene default_scene() {
   skin.name = "skin";
   skin.mesh = make_skin_phantom();
   // Skin spreads a dent widely and is stiffer than brain (the paper's Fig. 3 against Fig. 1).
-  skin.material = Material{.sigma_mm = 14.0f, .stiffness_n_per_mm = 0.8f, .damping_ns_per_m = 1.0f,
-                           .color = {0.93f, 0.76f, 0.64f}, .touchable = true, .visible = true};
+  skin.material = Material{.sigma_mm = 14.0f,
+                           .stiffness_n_per_mm = 0.8f,
+                           .damping_ns_per_m = 1.0f,
+                           .color = {0.93f, 0.76f, 0.64f},
+                           .touchable = true,
+                           .visible = true};
   SceneObject brain;
   brain.name = "brain";
   brain.mesh = make_brain_phantom();
-  brain.material = Material{.sigma_mm = 5.0f, .stiffness_n_per_mm = 0.3f, .damping_ns_per_m = 1.0f,
-                            .color = {0.88f, 0.62f, 0.60f}, .touchable = true, .visible = true};
+  brain.material = Material{.sigma_mm = 5.0f,
+                            .stiffness_n_per_mm = 0.3f,
+                            .damping_ns_per_m = 1.0f,
+                            .color = {0.88f, 0.62f, 0.60f},
+                            .touchable = true,
+                            .visible = true};
   scene.objects.push_back(std::move(brain));
   scene.objects.push_back(std::move(skin));
   return scene;

@@ -73,7 +73,8 @@ double neck_exit(glm::dvec3 w) {
   double side = far_mm;
   if (a > 0.0) {
     const double root = std::sqrt(b * b - 4.0 * a * c);
-    side = b > 0.0 ? 2.0 * c / (-b - root) : (-b + root) / (2.0 * a);  // the positive root, without cancellation
+    side =
+        b > 0.0 ? 2.0 * c / (-b - root) : (-b + root) / (2.0 * a);  // the positive root, without cancellation
   }
   const double floor = w.z < 0.0 ? (bottom - skin_centre.z) / w.z : far_mm;
   const double ceiling = w.z > 0.0 ? (top - skin_centre.z) / w.z : far_mm;
@@ -116,8 +117,8 @@ double skin_radius(glm::dvec3 w) {
 
 Mesh make_skin_phantom(std::size_t vertices) {
   if (vertices < phantom_min_vertices) {
-    throw Error("make_skin_phantom: need at least " + std::to_string(phantom_min_vertices) + " vertices, got " +
-                std::to_string(vertices));
+    throw Error("make_skin_phantom: need at least " + std::to_string(phantom_min_vertices) +
+                " vertices, got " + std::to_string(vertices));
   }
   Mesh mesh = make_sphere(1.0f, vertices);
   for (glm::vec3& p : mesh.positions) {

@@ -77,7 +77,8 @@ SlotProfile::Place SlotProfile::place(double distance, double half_period) const
     // The lip turns back from the wall's slope to the flat rim.
     const double a = wall_angle_ * (1.0 - (s - wall) / lip);
     lateral = bottom_radius_ * sin_wall_ + wall_length_ * cos_wall_ + lip_radius_ * (sin_wall_ - std::sin(a));
-    height = bottom_radius_ * (1.0 - cos_wall_) + wall_length_ * sin_wall_ + lip_radius_ * (std::cos(a) - cos_wall_);
+    height = bottom_radius_ * (1.0 - cos_wall_) + wall_length_ * sin_wall_ +
+             lip_radius_ * (std::cos(a) - cos_wall_);
   }
   return {lateral, std::max(0.0, depth_ - height)};
 }

@@ -37,8 +37,8 @@ SphericalWave::SphericalWave(int degree, std::uint64_t seed) : degree_(degree) {
   sin_coefficient_.resize(std::size_t(degree) + 1);
   std::uint64_t state = seed;
   for (int m = 0; m <= degree; ++m) {
-    // Y_lm = N_lm P_l^m(cos theta) {cos, sin}(m phi), N_lm^2 = (2 - [m = 0]) (2l + 1) / (4 pi) (l - m)! / (l + m)!.
-    // operator() evaluates P_l^m / (2m - 1)!!, so that factor joins the coefficient too.
+    // Y_lm = N_lm P_l^m(cos theta) {cos, sin}(m phi), N_lm^2 = (2 - [m = 0]) (2l + 1) / (4 pi) (l - m)! / (l
+    // + m)!. operator() evaluates P_l^m / (2m - 1)!!, so that factor joins the coefficient too.
     double ratio = 1.0;  // (l - m)! / (l + m)!
     for (int j = degree - m + 1; j <= degree + m; ++j) ratio /= double(j);
     double double_factorial = 1.0;  // (2m - 1)!!

@@ -6,7 +6,17 @@
 namespace palpate::detail {
 namespace {
 
-enum class Kind { word, string, open_brace, close_brace, open_bracket, close_bracket, open_paren, close_paren, end };
+enum class Kind {
+  word,
+  string,
+  open_brace,
+  close_brace,
+  open_bracket,
+  close_bracket,
+  open_paren,
+  close_paren,
+  end
+};
 
 struct Token {
   Kind kind = Kind::end;
@@ -34,12 +44,18 @@ class Scanner {
       return t;
     };
     switch (c) {
-      case '{': return single(Kind::open_brace);
-      case '}': return single(Kind::close_brace);
-      case '[': return single(Kind::open_bracket);
-      case ']': return single(Kind::close_bracket);
-      case '(': return single(Kind::open_paren);
-      case ')': return single(Kind::close_paren);
+      case '{':
+        return single(Kind::open_brace);
+      case '}':
+        return single(Kind::close_brace);
+      case '[':
+        return single(Kind::open_bracket);
+      case ']':
+        return single(Kind::close_bracket);
+      case '(':
+        return single(Kind::open_paren);
+      case ')':
+        return single(Kind::close_paren);
       case '"':
         ++pos_;
         while (pos_ < text_.size() && text_[pos_] != '"') pos_ += text_[pos_] == '\\' ? 2 : 1;
@@ -48,7 +64,8 @@ class Scanner {
         t.end = pos_;
         return t;
       default:
-        while (pos_ < text_.size() && !is_separator(text_[pos_]) && std::string_view("{}[]()\"#").find(text_[pos_]) == std::string_view::npos) {
+        while (pos_ < text_.size() && !is_separator(text_[pos_]) &&
+               std::string_view("{}[]()\"#").find(text_[pos_]) == std::string_view::npos) {
           ++pos_;
         }
         t.kind = Kind::word;
@@ -74,7 +91,8 @@ class Scanner {
       t = next();
       if (t.kind == Kind::end) return t;
       if (t.kind == Kind::open_brace || t.kind == Kind::open_bracket || t.kind == Kind::open_paren) ++depth;
-      if (t.kind == Kind::close_brace || t.kind == Kind::close_bracket || t.kind == Kind::close_paren) --depth;
+      if (t.kind == Kind::close_brace || t.kind == Kind::close_bracket || t.kind == Kind::close_paren)
+        --depth;
     }
     return t;
   }
@@ -99,7 +117,8 @@ class Scanner {
 };
 
 bool is_number(std::string_view word) {
-  return !word.empty() && (std::isdigit(static_cast<unsigned char>(word[0])) || word[0] == '+' || word[0] == '-' || word[0] == '.');
+  return !word.empty() && (std::isdigit(static_cast<unsigned char>(word[0])) || word[0] == '+' ||
+                           word[0] == '-' || word[0] == '.');
 }
 
 // Consumes the value that follows a field name; returns the end of its last token.
@@ -108,10 +127,14 @@ std::size_t skip_value(Scanner& in, std::size_t fallback_end) {
   const std::string_view word = in.text(first);
   switch (first.kind) {
     case Kind::open_bracket:
-    case Kind::open_paren: return in.skip_group().end;
-    case Kind::string: return first.end;
-    case Kind::word: break;
-    default: return fallback_end;  // no value: leave the rest alone
+    case Kind::open_paren:
+      return in.skip_group().end;
+    case Kind::string:
+      return first.end;
+    case Kind::word:
+      break;
+    default:
+      return fallback_end;  // no value: leave the rest alone
   }
   if (word == "NULL" || word == "TRUE" || word == "FALSE") return first.end;
   if (word == "USE" || word == "IS") return in.next().end;
@@ -138,7 +161,8 @@ struct OpenNode {
 
 }  // namespace
 
-std::size_t remove_vrml_field(std::string& text, std::string_view field, const std::vector<std::string>& node_types) {
+std::size_t remove_vrml_field(std::string& text, std::string_view field,
+                              const std::vector<std::string>& node_types) {
   std::vector<std::pair<std::size_t, std::size_t>> cuts;
   {
     Scanner in(text);
@@ -148,7 +172,9 @@ std::size_t remove_vrml_field(std::string& text, std::string_view field, const s
     for (Token t = in.next(); t.kind != Kind::end; t = in.next()) {
       const std::string_view word = in.text(t);
       switch (t.kind) {
-        case Kind::open_brace: open.push_back({last_kind == Kind::word ? last_word : std::string_view{}}); break;
+        case Kind::open_brace:
+          open.push_back({last_kind == Kind::word ? last_word : std::string_view{}});
+          break;
         case Kind::close_brace:
           if (!open.empty()) open.pop_back();
           break;
@@ -167,7 +193,8 @@ std::size_t remove_vrml_field(std::string& text, std::string_view field, const s
             continue;
           }
           break;
-        default: break;
+        default:
+          break;
       }
       last_word = word;
       last_kind = t.kind;

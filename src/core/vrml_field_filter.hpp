@@ -13,6 +13,7 @@ namespace palpate::detail {
 // Blanks out (with spaces, keeping newlines so that line numbers stay true) every occurrence of the
 // field `field` with its value inside nodes whose type is one of `node_types`. Returns how many
 // occurrences it removed.
-std::size_t remove_vrml_field(std::string& text, std::string_view field, const std::vector<std::string>& node_types);
+std::size_t remove_vrml_field(std::string& text, std::string_view field,
+                              const std::vector<std::string>& node_types);
 
 }  // namespace palpate::detail

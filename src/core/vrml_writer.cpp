@@ -53,7 +53,8 @@ void write_vrml97(const Mesh& mesh, const std::filesystem::path& file) {
   std::vector<std::int32_t> coord_index;
   coord_index.reserve(mesh.triangle_count() * 4);
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-    for (int corner = 0; corner < 3; ++corner) coord_index.push_back(static_cast<std::int32_t>(mesh.indices[3 * t + corner]));
+    for (int corner = 0; corner < 3; ++corner)
+      coord_index.push_back(static_cast<std::int32_t>(mesh.indices[3 * t + corner]));
     coord_index.push_back(-1);
   }
   faces->coordIndex.setValues(0, static_cast<int>(coord_index.size()), coord_index.data());

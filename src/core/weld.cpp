@@ -12,10 +12,14 @@ namespace palpate::detail {
 namespace {
 
 // Bit pattern of a float with -0 folded into +0, so that equal values weld.
-std::uint32_t bits(float v) noexcept { return std::bit_cast<std::uint32_t>(v == 0.0f ? 0.0f : v); }
+std::uint32_t bits(float v) noexcept {
+  return std::bit_cast<std::uint32_t>(v == 0.0f ? 0.0f : v);
+}
 
 using PositionKey = std::array<std::uint32_t, 3>;
-PositionKey position_key(glm::vec3 p) noexcept { return {bits(p.x), bits(p.y), bits(p.z)}; }
+PositionKey position_key(glm::vec3 p) noexcept {
+  return {bits(p.x), bits(p.y), bits(p.z)};
+}
 
 std::uint64_t hash(const PositionKey& key) noexcept {
   std::uint64_t h = 0x9e3779b97f4a7c15ull;
@@ -25,7 +29,8 @@ std::uint64_t hash(const PositionKey& key) noexcept {
 
 // Ids of distinct positions, in order of first appearance; returns the id of each input position.
 // An open-addressing table: a million lookups a load, where std::unordered_map's nodes cost.
-std::vector<std::uint32_t> weld_ids(const std::vector<glm::vec3>& positions, std::vector<glm::vec3>& distinct) {
+std::vector<std::uint32_t> weld_ids(const std::vector<glm::vec3>& positions,
+                                    std::vector<glm::vec3>& distinct) {
   constexpr std::uint32_t kEmpty = 0xffffffffu;
   std::size_t capacity = 16;
   while (capacity < positions.size() * 2) capacity *= 2;
@@ -52,7 +57,8 @@ glm::vec3 unit_or_zero(glm::vec3 v) noexcept {
 }
 
 // Corner normals from the faces around each position, within the crease angle of the corner's face.
-std::vector<glm::vec3> crease_normals(const std::vector<glm::vec3>& positions, const std::vector<std::uint32_t>& position_id,
+std::vector<glm::vec3> crease_normals(const std::vector<glm::vec3>& positions,
+                                      const std::vector<std::uint32_t>& position_id,
                                       std::size_t position_count, float crease_angle_rad) {
   const std::size_t corners = positions.size();
   const std::size_t triangles = corners / 3;
@@ -68,10 +74,12 @@ std::vector<glm::vec3> crease_normals(const std::vector<glm::vec3>& positions, c
   for (std::size_t v = 0; v < position_count; ++v) first[v + 1] += first[v];
   std::vector<std::uint32_t> around(corners);
   std::vector<std::uint32_t> fill(first.begin(), first.end() - 1);
-  for (std::size_t c = 0; c < corners; ++c) around[fill[position_id[c]]++] = static_cast<std::uint32_t>(c / 3);
+  for (std::size_t c = 0; c < corners; ++c)
+    around[fill[position_id[c]]++] = static_cast<std::uint32_t>(c / 3);
 
   // A small tolerance keeps the triangles of one planar polygon together at creaseAngle 0.
-  const float min_cos = crease_angle_rad >= std::numbers::pi_v<float> ? -2.0f : std::cos(crease_angle_rad) - 1e-5f;
+  const float min_cos =
+      crease_angle_rad >= std::numbers::pi_v<float> ? -2.0f : std::cos(crease_angle_rad) - 1e-5f;
   std::vector<glm::vec3> normals(corners);
   for (std::size_t c = 0; c < corners; ++c) {
     const std::size_t t = c / 3;

@@ -84,7 +84,9 @@ vec3 palpate_perturb_normal(vec3 world_normal, vec3 rest_world_position) {
 
 }  // namespace
 
-std::string_view deform_glsl() noexcept { return source; }
+std::string_view deform_glsl() noexcept {
+  return source;
+}
 
 std::string insert_deform_glsl(std::string_view shader_source, int dent_slots) {
   std::size_t insert_at = 0;
@@ -154,6 +156,8 @@ int DeformBlock::update(std::span<const Dent> dents) noexcept {
   return static_cast<int>(dents.size()) - data.count;
 }
 
-void DeformBlock::bind() const noexcept { glBindBufferBase(GL_UNIFORM_BUFFER, binding_, buffer_); }
+void DeformBlock::bind() const noexcept {
+  glBindBufferBase(GL_UNIFORM_BUFFER, binding_, buffer_);
+}
 
 }  // namespace palpate::gl

@@ -9,9 +9,12 @@ namespace {
 
 GLenum internal_format(ColorFormat format) {
   switch (format) {
-    case ColorFormat::rgba16f: return GL_RGBA16F;
-    case ColorFormat::rgba32f: return GL_RGBA32F;
-    case ColorFormat::rgba8: break;
+    case ColorFormat::rgba16f:
+      return GL_RGBA16F;
+    case ColorFormat::rgba32f:
+      return GL_RGBA32F;
+    case ColorFormat::rgba8:
+      break;
   }
   return GL_RGBA8;
 }
@@ -30,8 +33,8 @@ GLuint make_renderbuffer(GLenum format, int samples, int width, int height) {
 void check_complete(GLuint framebuffer, const FramebufferOptions& options) {
   const GLenum status = glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
-    throw Error("framebuffer " + std::to_string(options.width) + "x" + std::to_string(options.height) + " with " +
-                std::to_string(options.samples) + " samples is incomplete (status 0x" +
+    throw Error("framebuffer " + std::to_string(options.width) + "x" + std::to_string(options.height) +
+                " with " + std::to_string(options.samples) + " samples is incomplete (status 0x" +
                 std::to_string(status) + ")");
   }
 }
@@ -59,7 +62,8 @@ Framebuffer::Framebuffer(FramebufferOptions options) : options_(options) {
   if (options.samples > 1) {
     resolve_color_ = make_renderbuffer(format, 0, options.width, options.height);
     glCreateFramebuffers(1, &resolve_framebuffer_);
-    glNamedFramebufferRenderbuffer(resolve_framebuffer_, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, resolve_color_);
+    glNamedFramebufferRenderbuffer(resolve_framebuffer_, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER,
+                                   resolve_color_);
     check_complete(resolve_framebuffer_, options);
   }
 }

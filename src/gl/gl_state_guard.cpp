@@ -28,7 +28,8 @@ GlStateGuard::~GlStateGuard() {
   // An indexed binding made by glBindBufferBase reads back with size 0.
   if (indexed_uniform_size_ > 0) {
     glBindBufferRange(GL_UNIFORM_BUFFER, uniform_binding_, static_cast<GLuint>(indexed_uniform_buffer_),
-                      static_cast<GLintptr>(indexed_uniform_start_), static_cast<GLsizeiptr>(indexed_uniform_size_));
+                      static_cast<GLintptr>(indexed_uniform_start_),
+                      static_cast<GLsizeiptr>(indexed_uniform_size_));
   } else {
     glBindBufferBase(GL_UNIFORM_BUFFER, uniform_binding_, static_cast<GLuint>(indexed_uniform_buffer_));
   }

@@ -92,7 +92,8 @@ std::optional<std::vector<glm::vec3>> bounding_polytope(std::span<const glm::vec
   for (const glm::vec3& point : points) {
     const glm::dvec3 p(point);
     center += p;
-    for (std::size_t d = 0; d < directions.size(); ++d) support[d] = std::max(support[d], glm::dot(directions[d], p));
+    for (std::size_t d = 0; d < directions.size(); ++d)
+      support[d] = std::max(support[d], glm::dot(directions[d], p));
   }
   center /= double(points.size());
 
@@ -113,7 +114,8 @@ std::optional<std::vector<glm::vec3>> bounding_polytope(std::span<const glm::vec
 
 }  // namespace
 
-std::optional<OcclusionProxy> make_occlusion_proxy(std::span<const glm::vec3> world_positions, float margin_mm) {
+std::optional<OcclusionProxy> make_occlusion_proxy(std::span<const glm::vec3> world_positions,
+                                                   float margin_mm) {
   if (world_positions.empty()) return std::nullopt;
   const std::optional<std::vector<glm::vec3>> polytope = bounding_polytope(world_positions, margin_mm);
   if (!polytope) return std::nullopt;

@@ -32,6 +32,7 @@ struct OcclusionProxy {
 
 // The proxy of the points (world mm, all finite): it holds every point within margin_mm + pad of them.
 // Nothing for no points, or should qhull fail (then the object cannot be culled). Allocates.
-std::optional<OcclusionProxy> make_occlusion_proxy(std::span<const glm::vec3> world_positions, float margin_mm);
+std::optional<OcclusionProxy> make_occlusion_proxy(std::span<const glm::vec3> world_positions,
+                                                   float margin_mm);
 
 }  // namespace palpate::gl

@@ -108,9 +108,13 @@ std::string header(ShaderVariant variant) {
 
 }  // namespace
 
-std::string render_vertex_shader(ShaderVariant variant) { return header(variant) + std::string(vertex_body); }
+std::string render_vertex_shader(ShaderVariant variant) {
+  return header(variant) + std::string(vertex_body);
+}
 
-std::string render_fragment_shader(ShaderVariant variant) { return header(variant) + std::string(fragment_body); }
+std::string render_fragment_shader(ShaderVariant variant) {
+  return header(variant) + std::string(fragment_body);
+}
 
 std::string occlusion_proxy_vertex_shader() {
   return R"glsl(#version 450 core
@@ -122,6 +126,8 @@ void main() { gl_Position = view_projection * vec4(corner + pad * direction, 1.0
 )glsl";
 }
 
-std::string occlusion_proxy_fragment_shader() { return "#version 450 core\nvoid main() {}\n"; }
+std::string occlusion_proxy_fragment_shader() {
+  return "#version 450 core\nvoid main() {}\n";
+}
 
 }  // namespace palpate::gl

@@ -39,10 +39,12 @@ struct Program {
   GLint spot_color = -1, ambient_color = -1, specular = -1;
 
   explicit Program(ShaderVariant variant)
-      : program(std::string("palpate renderer (") +
-                    (variant.dent_slots ? "deform " + std::to_string(variant.dent_slots) + " dents" : "plain") +
-                    (variant.normals ? ", normals" : ", lit") + (variant.vertex_colors ? ", vertex colours)" : ")"),
-                render_vertex_shader(variant), render_fragment_shader(variant)) {
+      : program(
+            std::string("palpate renderer (") +
+                (variant.dent_slots ? "deform " + std::to_string(variant.dent_slots) + " dents" : "plain") +
+                (variant.normals ? ", normals" : ", lit") +
+                (variant.vertex_colors ? ", vertex colours)" : ")"),
+            render_vertex_shader(variant), render_fragment_shader(variant)) {
     model = program.uniform("model");
     normal_matrix = program.uniform("normal_matrix");
     view_projection = program.uniform("view_projection");
@@ -93,8 +95,10 @@ struct DrawRanges {
   }
   // Appends the range, merging it with the last one when they touch.
   void add(std::uint32_t first_index, std::uint32_t index_count) {
-    const auto* offset = reinterpret_cast<const void*>(static_cast<std::uintptr_t>(first_index) * sizeof(std::uint32_t));
-    if (!counts.empty() && static_cast<const char*>(offsets.back()) + counts.back() * sizeof(std::uint32_t) == offset) {
+    const auto* offset =
+        reinterpret_cast<const void*>(static_cast<std::uintptr_t>(first_index) * sizeof(std::uint32_t));
+    if (!counts.empty() &&
+        static_cast<const char*>(offsets.back()) + counts.back() * sizeof(std::uint32_t) == offset) {
       counts.back() += static_cast<GLsizei>(index_count);
       return;
     }
@@ -103,7 +107,8 @@ struct DrawRanges {
   }
   void draw() const noexcept {
     if (!counts.empty()) {
-      glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(), static_cast<GLsizei>(counts.size()));
+      glMultiDrawElements(GL_TRIANGLES, counts.data(), GL_UNSIGNED_INT, offsets.data(),
+                          static_cast<GLsizei>(counts.size()));
     }
   }
 };
@@ -220,7 +225,7 @@ struct ProxyProgram {
 struct RenderObject {
   Mesh mesh;  // object frame, triangles in cluster order (the CPU-naive path deforms it)
   glm::mat4 transform{1.0f};
-  Bounds world_bounds;  // undeformed
+  Bounds world_bounds;              // undeformed
   std::unique_ptr<GpuProxy> proxy;  // none: never culled
   Query occlusion;
   bool queried = false;  // in the last draw
@@ -239,7 +244,7 @@ struct RenderObject {
 }  // namespace
 
 struct Renderer::State {
-  std::vector<Program> programs;  // indexed by program_index
+  std::vector<Program> programs;   // indexed by program_index
   std::unique_ptr<GpuMesh> probe;  // unit sphere for the probe and contact-point markers
   std::unique_ptr<ProxyProgram> proxy_program;
   std::vector<std::unique_ptr<RenderObject>> objects;
@@ -251,8 +256,9 @@ struct Renderer::State {
   }
   // The uploaded object of that index, or null.
   RenderObject* object_at(int index) const noexcept {
-    return index >= 0 && static_cast<std::size_t>(index) < objects.size() ? objects[static_cast<std::size_t>(index)].get()
-                                                                          : nullptr;
+    return index >= 0 && static_cast<std::size_t>(index) < objects.size()
+               ? objects[static_cast<std::size_t>(index)].get()
+               : nullptr;
   }
   // Adds a dent to the object's list; returns 1 when the dent is dropped (no such object, or its list
   // is full).
@@ -283,7 +289,8 @@ void Renderer::upload(const Scene& scene) {
     const std::string what = "scene object '" + source.name + "'";
     validate_mesh(source.mesh, what);
     if (!(source.material.sigma_mm > 0.0f) || !std::isfinite(source.material.sigma_mm)) {
-      throw Error(what + ": sigma must be positive and finite, got " + std::to_string(source.material.sigma_mm));
+      throw Error(what + ": sigma must be positive and finite, got " +
+                  std::to_string(source.material.sigma_mm));
     }
     auto object = std::make_unique<RenderObject>();
     object->mesh = source.mesh;
@@ -305,7 +312,8 @@ void Renderer::upload(const Scene& scene) {
     const glm::vec3 size = objects[i]->world_bounds.size();
     return size.x * size.y * size.z;
   };
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return volume(a) > volume(b); });
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::size_t a, std::size_t b) { return volume(a) > volume(b); });
   // Every visible object but the first drawn may be culled: those get a proxy.
   bool first_visible = true;
   for (const std::size_t index : order) {
@@ -325,7 +333,9 @@ void Renderer::upload(const Scene& scene) {
   state_->draw_order = std::move(order);
 }
 
-std::size_t Renderer::object_count() const noexcept { return state_->objects.size(); }
+std::size_t Renderer::object_count() const noexcept {
+  return state_->objects.size();
+}
 
 namespace {
 
@@ -343,7 +353,8 @@ struct FrameUniforms {
     light_direction = glm::normalize(eye_to_world_rotation * lighting.direction);
     spot_position = glm::vec3(eye_to_world * glm::vec4(lighting.spot_position, 1.0f));
     spot_direction = glm::normalize(eye_to_world_rotation * lighting.spot_direction);
-    spot_cos = {std::cos(glm::radians(lighting.spot_outer_deg)), std::cos(glm::radians(lighting.spot_inner_deg))};
+    spot_cos = {std::cos(glm::radians(lighting.spot_outer_deg)),
+                std::cos(glm::radians(lighting.spot_inner_deg))};
   }
 
   void set(const Program& p, const Lighting& lighting) const noexcept {
@@ -396,7 +407,8 @@ void set_draw_state() noexcept {
 }
 
 // A sphere of `radius` at `center`, for the probe and the contact points.
-void draw_marker(const Program& program, const GpuMesh& sphere, glm::vec3 center, float radius, glm::vec3 color) {
+void draw_marker(const Program& program, const GpuMesh& sphere, glm::vec3 center, float radius,
+                 glm::vec3 color) {
   program.set_object(glm::scale(glm::translate(glm::mat4(1.0f), center), glm::vec3(radius)), color);
   draw_all(sphere);
 }
@@ -408,7 +420,8 @@ bool Renderer::State::begin_occlusion_test(RenderObject& object, const glm::mat4
   // A vertex moves by at most the sum of its dents' depths (along its normal, G <= p each). The proxy
   // holds the margin besides, for rounding here and in the rasterizer.
   float pad = 0.0f;
-  for (int i = 0; i < object.dent_count; ++i) pad += std::abs(object.dents[static_cast<std::size_t>(i)].depth_mm);
+  for (int i = 0; i < object.dent_count; ++i)
+    pad += std::abs(object.dents[static_cast<std::size_t>(i)].depth_mm);
   // The near plane, clip z + w >= 0, scaled to world millimetres. A convex proxy with every vertex at
   // least the margin beyond it is not clipped there (NaN fails the test too: drawn unconditionally).
   const glm::vec4 near_plane = glm::row(view_projection, 2) + glm::row(view_projection, 3);
@@ -433,8 +446,8 @@ bool Renderer::State::begin_occlusion_test(RenderObject& object, const glm::mat4
   return true;
 }
 
-DrawResult Renderer::draw(const glm::mat4& view, const glm::mat4& projection, std::span<const Contact> contacts,
-                          const DrawOptions& options) {
+DrawResult Renderer::draw(const glm::mat4& view, const glm::mat4& projection,
+                          std::span<const Contact> contacts, const DrawOptions& options) {
   DrawResult result;
   for (auto& object : state_->objects) object->dent_count = 0;
   for (const Contact& contact : contacts) {
@@ -443,12 +456,13 @@ DrawResult Renderer::draw(const glm::mat4& view, const glm::mat4& projection, st
     result.dropped_dents +=
         object ? state_->add_dent(contact.object, dent_from_contact(contact, object->material.sigma_mm)) : 1;
   }
-  state_->render(view, projection, options, options.draw_probe ? contacts : std::span<const Contact>(), result);
+  state_->render(view, projection, options, options.draw_probe ? contacts : std::span<const Contact>(),
+                 result);
   return result;
 }
 
-DrawResult Renderer::draw(const glm::mat4& view, const glm::mat4& projection, std::span<const ObjectDent> dents,
-                          const DrawOptions& options) {
+DrawResult Renderer::draw(const glm::mat4& view, const glm::mat4& projection,
+                          std::span<const ObjectDent> dents, const DrawOptions& options) {
   DrawResult result;
   for (auto& object : state_->objects) object->dent_count = 0;
   for (const ObjectDent& entry : dents) result.dropped_dents += state_->add_dent(entry.object, entry.dent);
@@ -477,13 +491,15 @@ void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection,
     RenderObject& object = *objects[index];
     object.queried = false;
     if (!object.material.visible) continue;
-    const bool query = options.occlusion_culling && drawn_before && begin_occlusion_test(object, frame.view_projection);
+    const bool query =
+        options.occlusion_culling && drawn_before && begin_occlusion_test(object, frame.view_projection);
     drawn_before = true;
     object.queried = query;
     if (query) ++result.occlusion_tested;
     const bool colors = object.gpu->color_buffer != 0;
     const Program& plain = program(0, options.shading, colors);
-    const std::span<const Dent> object_dents(object.dents.data(), static_cast<std::size_t>(object.dent_count));
+    const std::span<const Dent> object_dents(object.dents.data(),
+                                             static_cast<std::size_t>(object.dent_count));
     if (object.dent_count > 0) ++result.deformed_objects;
 
     if (object.dent_count == 0 || options.deformation == Deformation::none) {
@@ -543,8 +559,8 @@ void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection,
   if (options.draw_contact_points) {
     for (const auto& object : objects) {
       for (int i = 0; i < object->dent_count; ++i) {
-        draw_marker(marker, *probe, object->dents[static_cast<std::size_t>(i)].center, 0.5f * options.probe_radius_mm,
-                    options.contact_point_color);
+        draw_marker(marker, *probe, object->dents[static_cast<std::size_t>(i)].center,
+                    0.5f * options.probe_radius_mm, options.contact_point_color);
       }
     }
   }

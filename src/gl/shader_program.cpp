@@ -35,7 +35,8 @@ GLuint compile(const std::string& program_name, GLenum stage, std::string_view s
 
 }  // namespace
 
-ShaderProgram::ShaderProgram(std::string name, std::string_view vertex_source, std::string_view fragment_source)
+ShaderProgram::ShaderProgram(std::string name, std::string_view vertex_source,
+                             std::string_view fragment_source)
     : name_(std::move(name)) {
   const GLuint vertex = compile(name_, GL_VERTEX_SHADER, vertex_source);
   GLuint fragment = 0;

@@ -35,14 +35,16 @@ std::vector<TriangleCluster> cluster_triangles(std::vector<std::uint32_t>& indic
   for (std::size_t t = 0; t < triangles; ++t) {
     const glm::vec3 centroid =
         (positions[indices[3 * t]] + positions[indices[3 * t + 1]] + positions[indices[3 * t + 2]]) / 3.0f;
-    const glm::uvec3 cell = glm::uvec3(glm::clamp((centroid - low) * scale, glm::vec3(0.0f), glm::vec3(1023.0f)));
+    const glm::uvec3 cell =
+        glm::uvec3(glm::clamp((centroid - low) * scale, glm::vec3(0.0f), glm::vec3(1023.0f)));
     order[t] = {spread_bits(cell.x) | (spread_bits(cell.y) << 1) | (spread_bits(cell.z) << 2),
                 static_cast<std::uint32_t>(t)};
   }
   std::sort(order.begin(), order.end());
   std::vector<std::uint32_t> sorted(indices.size());
   for (std::size_t t = 0; t < triangles; ++t) {
-    std::copy_n(indices.begin() + 3 * static_cast<std::ptrdiff_t>(order[t].second), 3, sorted.begin() + 3 * t);
+    std::copy_n(indices.begin() + 3 * static_cast<std::ptrdiff_t>(order[t].second), 3,
+                sorted.begin() + 3 * t);
   }
   indices = std::move(sorted);
 

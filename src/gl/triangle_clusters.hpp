@@ -15,7 +15,7 @@ namespace palpate::gl {
 struct TriangleCluster {
   std::uint32_t first_index = 0;  // into the reordered index buffer
   std::uint32_t index_count = 0;
-  glm::vec3 center{0.0f};         // bounding sphere of the cluster's vertices, object frame (mm)
+  glm::vec3 center{0.0f};  // bounding sphere of the cluster's vertices, object frame (mm)
   float radius = 0.0f;
 };
 

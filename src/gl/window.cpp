@@ -55,11 +55,21 @@ Window::~Window() {
   if (--glfw_windows == 0) glfwTerminate();
 }
 
-void Window::make_current() const noexcept { glfwMakeContextCurrent(state_->window); }
-bool Window::should_close() const noexcept { return glfwWindowShouldClose(state_->window); }
-void Window::request_close() noexcept { glfwSetWindowShouldClose(state_->window, GLFW_TRUE); }
-void Window::swap_buffers() noexcept { glfwSwapBuffers(state_->window); }
-void Window::poll_events() noexcept { glfwPollEvents(); }
+void Window::make_current() const noexcept {
+  glfwMakeContextCurrent(state_->window);
+}
+bool Window::should_close() const noexcept {
+  return glfwWindowShouldClose(state_->window);
+}
+void Window::request_close() noexcept {
+  glfwSetWindowShouldClose(state_->window, GLFW_TRUE);
+}
+void Window::swap_buffers() noexcept {
+  glfwSwapBuffers(state_->window);
+}
+void Window::poll_events() noexcept {
+  glfwPollEvents();
+}
 
 int Window::framebuffer_width() const noexcept {
   int width = 0, height = 0;
@@ -73,6 +83,8 @@ int Window::framebuffer_height() const noexcept {
   return height;
 }
 
-void* Window::native_handle() const noexcept { return state_->window; }
+void* Window::native_handle() const noexcept {
+  return state_->window;
+}
 
 }  // namespace palpate::gl

@@ -2,7 +2,9 @@
 
 namespace palpate {
 
-DeviceState NullDevice::read(double) noexcept { return {}; }
+DeviceState NullDevice::read(double) noexcept {
+  return {};
+}
 void NullDevice::write(glm::vec3) noexcept {}
 
 }  // namespace palpate

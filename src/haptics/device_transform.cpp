@@ -28,7 +28,8 @@ DeviceTransform fit_workspace(const Bounds& device_workspace, const Bounds& scen
 
 void validate_device_transform(const DeviceTransform& transform) {
   if (!(std::isfinite(transform.scale) && transform.scale > 0.0f)) {
-    throw Error("device transform: scale must be positive and finite, got " + std::to_string(transform.scale));
+    throw Error("device transform: scale must be positive and finite, got " +
+                std::to_string(transform.scale));
   }
   const glm::mat3 gram = glm::transpose(transform.rotation) * transform.rotation;
   for (int i = 0; i < 3; ++i) {
@@ -36,7 +37,8 @@ void validate_device_transform(const DeviceTransform& transform) {
       const float expected = i == j ? 1.0f : 0.0f;
       if (!(std::abs(gram[i][j] - expected) <= 1e-4f)) {
         throw Error("device transform: rotation is not orthonormal (R^T R differs from I by " +
-                    std::to_string(gram[i][j] - expected) + " at [" + std::to_string(i) + "][" + std::to_string(j) + "])");
+                    std::to_string(gram[i][j] - expected) + " at [" + std::to_string(i) + "][" +
+                    std::to_string(j) + "])");
       }
     }
   }
@@ -44,7 +46,8 @@ void validate_device_transform(const DeviceTransform& transform) {
     throw Error("device transform: rotation must have determinant +1 (a mirror flips the surface normals)");
   }
   for (int axis = 0; axis < 3; ++axis) {
-    if (!std::isfinite(transform.translation[axis])) throw Error("device transform: translation is not finite");
+    if (!std::isfinite(transform.translation[axis]))
+      throw Error("device transform: translation is not finite");
   }
 }
 

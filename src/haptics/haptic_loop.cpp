@@ -31,12 +31,14 @@ HapticLoop::HapticLoop(Device& device, const Scene& scene, const Bvh& bvh, const
       period_ns_(std::llround(1e9 / rate_hz_)),
       params_(params),
       own_clock_(clock ? nullptr
-                       : std::make_unique<MonotonicClock>(
-                             std::min<std::int64_t>(std::llround(std::max(params.spin_us, 0.0) * 1e3), period_ns_ / 2))),
+                       : std::make_unique<MonotonicClock>(std::min<std::int64_t>(
+                             std::llround(std::max(params.spin_us, 0.0) * 1e3), period_ns_ / 2))),
       clock_(clock ? *clock : *own_clock_),
       stats_(rate_hz_, params.statistics_window) {}
 
-HapticLoop::~HapticLoop() { stop(); }
+HapticLoop::~HapticLoop() {
+  stop();
+}
 
 void HapticLoop::begin_run() noexcept {
   const std::int64_t origin = clock_.now_ns();
@@ -58,7 +60,8 @@ void HapticLoop::run_period() noexcept {
   first_of_run_ = false;
   ++next_tick_;
   // After a miss, start at once on the latest grid point passed: no burst of catch-up ticks.
-  period_start_ns_ = missed ? period_start_ns_ + (end_ns - period_start_ns_) / period_ns_ * period_ns_ : period_end_ns;
+  period_start_ns_ =
+      missed ? period_start_ns_ + (end_ns - period_start_ns_) / period_ns_ * period_ns_ : period_end_ns;
 }
 
 void HapticLoop::thread_main() noexcept {
@@ -78,7 +81,8 @@ void HapticLoop::start() {
     const int status = pthread_setschedparam(thread_.native_handle(), SCHED_FIFO, &priority);
     granted = status == 0;
     if (!granted) {
-      std::fprintf(stderr, "palpate: haptic loop: SCHED_FIFO not permitted (%s); running at normal priority\n",
+      std::fprintf(stderr,
+                   "palpate: haptic loop: SCHED_FIFO not permitted (%s); running at normal priority\n",
                    std::strerror(status));
     }
   }

@@ -7,12 +7,14 @@
 namespace palpate {
 namespace {
 
-bool finite(glm::vec3 v) noexcept { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(glm::vec3 v) noexcept {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 }  // namespace
 
-HapticPipeline::HapticPipeline(Device& device, const Scene& scene, const Bvh& bvh, const DeviceTransform& device_to_scene,
-                               const ProxyParams& proxy)
+HapticPipeline::HapticPipeline(Device& device, const Scene& scene, const Bvh& bvh,
+                               const DeviceTransform& device_to_scene, const ProxyParams& proxy)
     : device_(device),
       scene_(scene),
       bvh_(bvh),
@@ -39,7 +41,8 @@ TickResult HapticPipeline::tick(std::uint64_t tick, double time_s) noexcept {
   result.contact.time_s = time_s;
   const auto object = static_cast<std::size_t>(result.contact.object);
   if (result.contact.in_contact() && object < scene_.objects.size()) {
-    const ForceResult force = spring_damper(result.contact, hip_velocity, scene_.objects[object].material, limits_.max_force_n);
+    const ForceResult force =
+        spring_damper(result.contact, hip_velocity, scene_.objects[object].material, limits_.max_force_n);
     result.force_n = force.force_n;
     result.clamped = force.clamped;
     result.invalid_input = force.invalid_input;

@@ -33,8 +33,10 @@ Percentiles percentiles(std::span<double> values) noexcept {
   const auto max = std::max_element(values.begin(), values.end());
   std::iter_swap(max, values.end() - 1);
   std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(i999), values.end() - 1);
-  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(i99), values.begin() + std::ptrdiff_t(i999));
-  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(i50), values.begin() + std::ptrdiff_t(i99));
+  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(i99),
+                   values.begin() + std::ptrdiff_t(i999));
+  std::nth_element(values.begin(), values.begin() + std::ptrdiff_t(i50),
+                   values.begin() + std::ptrdiff_t(i99));
   return {values[i50], values[i99], values[i999], values.back()};
 }
 
@@ -54,7 +56,8 @@ void LoopStatsRecorder::record_tick(std::int64_t start_ns, std::int64_t end_ns, 
   const std::uint64_t k = ticks_written_;
   const bool has_period = k > 0 && !first_of_run;
   const std::uint32_t period = has_period ? saturate(start_ns - last_start_ns_) : no_period;
-  samples_[k & mask_].store(std::uint64_t(saturate(end_ns - start_ns)) << 32 | period, std::memory_order_relaxed);
+  samples_[k & mask_].store(std::uint64_t(saturate(end_ns - start_ns)) << 32 | period,
+                            std::memory_order_relaxed);
 
   // Rate: the ring of start times holds this run's ticks rate_tail_..k; drop those a second old.
   if (first_of_run) {
@@ -103,7 +106,8 @@ LoopStatistics LoopStatsRecorder::snapshot() const {
     const auto period = static_cast<std::uint32_t>(packed);
     if (period == no_period) continue;
     periods_us.push_back(double(period) * 1e-3);
-    const double bin = (double(period) / double(target_period_ns_) - 0.5) * double(LoopStatistics::histogram_bins);
+    const double bin =
+        (double(period) / double(target_period_ns_) - 0.5) * double(LoopStatistics::histogram_bins);
     ++stats.period_histogram[std::size_t(std::clamp(bin, 0.0, double(LoopStatistics::histogram_bins - 1)))];
     errors_us.push_back(std::abs(double(std::int64_t(period) - target_period_ns_)) * 1e-3);
   }

@@ -16,13 +16,16 @@ void require(bool ok, const char* field, const std::string& why) {
   if (!ok) throw Error(std::string("press-slide path: ") + field + " " + why);
 }
 
-bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+bool finite(glm::vec3 v) {
+  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
+}
 
 }  // namespace
 
 PressSlidePath::PressSlidePath(const PressSlide& spec) : spec_(spec) {
   require(finite(spec.surface_point_mm), "surface_point_mm", "must be finite");
-  require(finite(spec.normal) && glm::length(spec.normal) > 1e-6f, "normal", "must be a finite non-zero vector");
+  require(finite(spec.normal) && glm::length(spec.normal) > 1e-6f, "normal",
+          "must be a finite non-zero vector");
   normal_ = glm::normalize(spec.normal);
   require(finite(spec.slide_direction), "slide_direction", "must be finite");
   const glm::vec3 tangent = spec.slide_direction - normal_ * glm::dot(spec.slide_direction, normal_);
@@ -34,23 +37,25 @@ PressSlidePath::PressSlidePath(const PressSlide& spec) : spec_(spec) {
                              std::pair{spec.retract_speed_mm_per_s, "retract_speed_mm_per_s"}}) {
     require(std::isfinite(value) && value > 0.0f, name, "must be positive, got " + std::to_string(value));
   }
-  require(std::isfinite(spec.slide_length_mm) && spec.slide_length_mm >= 0.0f, "slide_length_mm", "must be >= 0");
+  require(std::isfinite(spec.slide_length_mm) && spec.slide_length_mm >= 0.0f, "slide_length_mm",
+          "must be >= 0");
   require(std::isfinite(spec.curvature_radius_mm) && spec.curvature_radius_mm >= 0.0f, "curvature_radius_mm",
           "must be >= 0 (0 for a flat surface)");
-  require(std::isfinite(spec.depth_amplitude_mm) && std::isfinite(spec.depth_cycles), "depth_amplitude_mm/depth_cycles",
-          "must be finite");
+  require(std::isfinite(spec.depth_amplitude_mm) && std::isfinite(spec.depth_cycles),
+          "depth_amplitude_mm/depth_cycles", "must be finite");
   require(std::isfinite(spec.rest_s) && spec.rest_s >= 0.0f, "rest_s", "must be >= 0");
-  require(std::isfinite(spec.press_depth_mm) && std::isfinite(spec.start_height_mm), "press_depth_mm/start_height_mm",
-          "must be finite");
+  require(std::isfinite(spec.press_depth_mm) && std::isfinite(spec.start_height_mm),
+          "press_depth_mm/start_height_mm", "must be finite");
   const float deepest = std::abs(spec.press_depth_mm) + std::abs(spec.depth_amplitude_mm);
   require(spec.curvature_radius_mm == 0.0f || spec.curvature_radius_mm > deepest, "curvature_radius_mm",
           "must exceed the deepest press (" + std::to_string(deepest) + " mm)");
-  require(spec.start_height_mm + spec.press_depth_mm > 0.0f && spec.start_height_mm + depth_at(spec.slide_length_mm) > 0.0f,
+  require(spec.start_height_mm + spec.press_depth_mm > 0.0f &&
+              spec.start_height_mm + depth_at(spec.slide_length_mm) > 0.0f,
           "start_height_mm", "must be above the press depth at both ends of the slide");
   approach_end_s_ = (double(spec.start_height_mm) + spec.press_depth_mm) / spec.approach_speed_mm_per_s;
   slide_end_s_ = approach_end_s_ + double(spec.slide_length_mm) / spec.slide_speed_mm_per_s;
-  retract_end_s_ =
-      slide_end_s_ + (double(spec.start_height_mm) + depth_at(spec.slide_length_mm)) / spec.retract_speed_mm_per_s;
+  retract_end_s_ = slide_end_s_ + (double(spec.start_height_mm) + depth_at(spec.slide_length_mm)) /
+                                      spec.retract_speed_mm_per_s;
   duration_s_ = retract_end_s_ + spec.rest_s;
 }
 
@@ -84,10 +89,11 @@ DeviceState PressSlidePath::sample(double time_s) const noexcept {
     const float speed = spec_.slide_speed_mm_per_s;
     const float s = speed * float(t - approach_end_s_);
     const float depth = depth_at(s);
-    const float depth_slope = length > 0.0f ? spec_.depth_amplitude_mm * 2.0f * std::numbers::pi_v<float> *
-                                                  spec_.depth_cycles / length *
-                                                  std::cos(2.0f * std::numbers::pi_v<float> * spec_.depth_cycles * s / length)
-                                            : 0.0f;
+    const float depth_slope =
+        length > 0.0f
+            ? spec_.depth_amplitude_mm * 2.0f * std::numbers::pi_v<float> * spec_.depth_cycles / length *
+                  std::cos(2.0f * std::numbers::pi_v<float> * spec_.depth_cycles * s / length)
+            : 0.0f;
     const glm::vec3 n = normal_at(s);
     state.position_mm = surface_at(s) - n * depth;
     // d/ds of (surface - n depth): the tangent scaled by (R - depth) / R on a sphere, minus n depth'.
@@ -110,12 +116,12 @@ DeviceState PressSlidePath::sample(double time_s) const noexcept {
   return state;
 }
 
-PressSlide aim_press_slide(const SceneObject& object, std::size_t vertex, glm::vec3 slide_direction, PressSlide spec,
-                           float smoothing_radius_mm) {
+PressSlide aim_press_slide(const SceneObject& object, std::size_t vertex, glm::vec3 slide_direction,
+                           PressSlide spec, float smoothing_radius_mm) {
   const Mesh& mesh = object.mesh;
   if (vertex >= mesh.positions.size()) {
-    throw Error("aim_press_slide: vertex " + std::to_string(vertex) + " of '" + object.name + "' is out of range (" +
-                std::to_string(mesh.positions.size()) + " vertices)");
+    throw Error("aim_press_slide: vertex " + std::to_string(vertex) + " of '" + object.name +
+                "' is out of range (" + std::to_string(mesh.positions.size()) + " vertices)");
   }
   Mesh with_normals;
   const Mesh* normals_from = &mesh;

@@ -31,8 +31,9 @@ SampledPath::SampledPath(std::vector<PathSample> samples) : samples_(std::move(s
   for (std::size_t i = 0; i < samples_.size(); ++i) {
     if (!finite(samples_[i])) throw Error("sampled path: sample " + std::to_string(i) + " is not finite");
     if (i > 0 && !(samples_[i].time_s > samples_[i - 1].time_s)) {
-      throw Error("sampled path: sample " + std::to_string(i) + " at t = " + std::to_string(samples_[i].time_s) +
-                  " s is not after the previous one at " + std::to_string(samples_[i - 1].time_s) + " s");
+      throw Error("sampled path: sample " + std::to_string(i) +
+                  " at t = " + std::to_string(samples_[i].time_s) + " s is not after the previous one at " +
+                  std::to_string(samples_[i - 1].time_s) + " s");
     }
   }
 }
@@ -76,14 +77,17 @@ SampledPath load_path_csv(const std::filesystem::path& file) {
     std::size_t begin = 0;
     while (true) {
       const std::size_t comma = text.find(',', begin);
-      const std::string_view field = trim(text.substr(begin, comma == std::string_view::npos ? text.npos : comma - begin));
+      const std::string_view field =
+          trim(text.substr(begin, comma == std::string_view::npos ? text.npos : comma - begin));
       if (count < 4) {
         const auto [end, error] = std::from_chars(field.data(), field.data() + field.size(), values[count]);
         if (field.empty() || error != std::errc() || end != field.data() + field.size()) {
-          throw Error(file, line_number, std::string(names[count]) + ": '" + std::string(field) + "' is not a number");
+          throw Error(file, line_number,
+                      std::string(names[count]) + ": '" + std::string(field) + "' is not a number");
         }
         if (!std::isfinite(values[count])) {
-          throw Error(file, line_number, std::string(names[count]) + " is not finite: '" + std::string(field) + "'");
+          throw Error(file, line_number,
+                      std::string(names[count]) + " is not finite: '" + std::string(field) + "'");
         }
       }
       ++count;
@@ -91,7 +95,8 @@ SampledPath load_path_csv(const std::filesystem::path& file) {
       begin = comma + 1;
     }
     if (count != 4) {
-      throw Error(file, line_number, "expected 4 comma-separated values t,x,y,z, got " + std::to_string(count));
+      throw Error(file, line_number,
+                  "expected 4 comma-separated values t,x,y,z, got " + std::to_string(count));
     }
     if (!samples.empty() && !(values[0] > samples.back().time_s)) {
       throw Error(file, line_number,

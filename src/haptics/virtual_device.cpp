@@ -6,7 +6,11 @@
 namespace palpate {
 
 VirtualDevice::VirtualDevice(glm::vec3 start_mm, float lag_s, DeviceLimits limits)
-    : target_(start_mm), position_(start_mm), force_(glm::vec3(0.0f)), lag_s_(std::max(lag_s, 1e-4f)), limits_(limits),
+    : target_(start_mm),
+      position_(start_mm),
+      force_(glm::vec3(0.0f)),
+      lag_s_(std::max(lag_s, 1e-4f)),
+      limits_(limits),
       tip_(start_mm) {}
 
 DeviceState VirtualDevice::read(double time_s) noexcept {

@@ -25,7 +25,9 @@ glm::mat4 matrix(const nlohmann::json& values) {
   return glm::make_mat4(v.data());
 }
 
-glm::vec3 vec(const nlohmann::json& values) { return {values[0].get<float>(), values[1].get<float>(), values[2].get<float>()}; }
+glm::vec3 vec(const nlohmann::json& values) {
+  return {values[0].get<float>(), values[1].get<float>(), values[2].get<float>()};
+}
 
 // Pixel position (x right, y up from the bottom row) of a world point.
 glm::vec2 project(const glm::mat4& view_projection, glm::vec3 p, int width, int height) {
@@ -42,7 +44,9 @@ void expect_files_and_report(const std::filesystem::path& out, const test::Comma
   const bool video = std::filesystem::is_regular_file(out / "demo.mp4");
   if (!video) {
     ASSERT_TRUE(std::filesystem::is_directory(out / "frames"));
-    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(out / "frames"), std::filesystem::directory_iterator()), 30);
+    EXPECT_EQ(std::distance(std::filesystem::directory_iterator(out / "frames"),
+                            std::filesystem::directory_iterator()),
+              30);
   }
   std::ifstream file(out / "report.json");
   const nlohmann::json report = nlohmann::json::parse(file);
@@ -68,7 +72,8 @@ void expect_dent_only_around_the_contact(const std::filesystem::path& out) {
   const nlohmann::json* deepest = nullptr;
   for (const auto& key : report["key_frames"]) {
     if (key["contact"]["object"].get<int>() >= 0 &&
-        (!deepest || key["contact"]["depth_mm"].get<float>() > (*deepest)["contact"]["depth_mm"].get<float>())) {
+        (!deepest ||
+         key["contact"]["depth_mm"].get<float>() > (*deepest)["contact"]["depth_mm"].get<float>())) {
       deepest = &key;
     }
   }
@@ -85,7 +90,8 @@ void expect_dent_only_around_the_contact(const std::filesystem::path& out) {
   // The same view, undeformed, rendered by the library.
   gl::HeadlessContext context;
   Scene scene = default_scene();
-  for (std::size_t i = 0; i < scene.objects.size(); ++i) scene.objects[i].material.visible = key["visible"][i].get<bool>();
+  for (std::size_t i = 0; i < scene.objects.size(); ++i)
+    scene.objects[i].material.visible = key["visible"][i].get<bool>();
   gl::Renderer renderer;
   renderer.upload(scene);
   gl::Framebuffer target({.width = width, .height = height});
@@ -96,7 +102,9 @@ void expect_dent_only_around_the_contact(const std::filesystem::path& out) {
   renderer.draw(view, projection, std::span<const Contact>(), {});
   std::vector<std::uint8_t> plain = target.read_rgba8();
   // PNG rows run top first; the framebuffer's bottom first.
-  const auto frame_pixel = [&](int x, int y) { return &frame[(std::size_t(height - 1 - y) * std::size_t(width) + std::size_t(x)) * 4]; };
+  const auto frame_pixel = [&](int x, int y) {
+    return &frame[(std::size_t(height - 1 - y) * std::size_t(width) + std::size_t(x)) * 4];
+  };
 
   const glm::vec3 contact = vec(key["contact"]["point"]);
   const int object = key["contact"]["object"].get<int>();
@@ -105,7 +113,9 @@ void expect_dent_only_around_the_contact(const std::filesystem::path& out) {
   // The dent's reach on screen: the largest projection of a 4 sigma offset in any direction.
   float reach_px = 0.0f;
   for (const glm::vec3 axis : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)}) {
-    reach_px = std::max(reach_px, glm::distance(project(projection * view, contact + axis * reach_mm, width, height), centre));
+    reach_px =
+        std::max(reach_px,
+                 glm::distance(project(projection * view, contact + axis * reach_mm, width, height), centre));
   }
   int near_changed = 0, far_changed = 0;
   for (int y = 0; y < height; ++y) {
@@ -124,7 +134,8 @@ void expect_dent_only_around_the_contact(const std::filesystem::path& out) {
 
 TEST(DemoRun, WritesItsReportAndFramesThatShowTheDentAroundTheContactOnly) {
   const auto out = test::scratch_dir("demo_run");
-  const auto result = test::run_command(cli + " demo --headless --frames 30 --width 480 --height 384 --out " + out.string());
+  const auto result =
+      test::run_command(cli + " demo --headless --frames 30 --width 480 --height 384 --out " + out.string());
   expect_files_and_report(out, result);
   if (result.exit_status == 0) expect_dent_only_around_the_contact(out);
 }

@@ -31,7 +31,9 @@ TEST(MeshCommand, PhantomThenInfoReportsTheTableOneCountsAndTopology) {
 
 TEST(MeshCommand, ConvertKeepsTheGeometry) {
   const auto dir = test::scratch_dir("mesh_command_convert");
-  ASSERT_EQ(test::run_command(cli + " mesh phantom --skin --vertices 2000 -o " + (dir / "skin.ply").string()).exit_status, 0);
+  ASSERT_EQ(test::run_command(cli + " mesh phantom --skin --vertices 2000 -o " + (dir / "skin.ply").string())
+                .exit_status,
+            0);
   const auto converted = test::run_command(cli + " mesh convert " + (dir / "skin.ply").string() + " " +
                                            (dir / "skin.wrl").string());
   ASSERT_EQ(converted.exit_status, 0) << converted.output;
@@ -42,7 +44,8 @@ TEST(MeshCommand, ConvertKeepsTheGeometry) {
 }
 
 TEST(MeshCommand, InfoReadsTheExampleSceneFile) {
-  const auto info = test::run_command(cli + " mesh info " + (test::source_dir() / "examples/scenes/default.toml").string());
+  const auto info =
+      test::run_command(cli + " mesh info " + (test::source_dir() / "examples/scenes/default.toml").string());
   ASSERT_EQ(info.exit_status, 0) << info.output;
   EXPECT_NE(info.output.find("objects     2"), std::string::npos) << info.output;
   EXPECT_NE(info.output.find("vertices    159,063"), std::string::npos) << info.output;

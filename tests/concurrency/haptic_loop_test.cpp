@@ -1,20 +1,20 @@
 // The haptic loop on its own thread: it starts and stops cleanly, its contacts advance and stay
 // whole while other threads read them and its statistics, and nothing on the loop thread allocates.
+#include "palpate/haptics/haptic_loop.hpp"
+
 #include <gtest/gtest.h>
 
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <glm/geometric.hpp>
 #include <thread>
 #include <vector>
-
-#include <glm/geometric.hpp>
 
 #include "allocation_counter.hpp"
 #include "palpate/core/bvh.hpp"
 #include "palpate/core/error.hpp"
 #include "palpate/core/shapes.hpp"
-#include "palpate/haptics/haptic_loop.hpp"
 #include "palpate/haptics/scripted_device.hpp"
 
 namespace palpate {
@@ -126,7 +126,8 @@ TEST(HapticLoopThreadTest, ContactsAdvanceAndStayWholeWhileReadersPoll) {
           ++result.in_contact;
           contacts_seen.fetch_add(1, std::memory_order_relaxed);
           // The depth is |HIP - SCP| of the same tick: a torn read would break it.
-          if (std::abs(glm::length(contact.hip - contact.point) - contact.depth_mm) > 1e-3f) ++result.inconsistent;
+          if (std::abs(glm::length(contact.hip - contact.point) - contact.depth_mm) > 1e-3f)
+            ++result.inconsistent;
         }
         if (r == 0) {  // one reader also polls the statistics
           const LoopStatistics stats = loop.statistics();

@@ -1,5 +1,7 @@
 // Latest<T> under one writer and several readers: every value read was written whole by one store,
 // and a reader never sees the version go back.
+#include "palpate/haptics/latest.hpp"
+
 #include <gtest/gtest.h>
 
 #include <array>
@@ -7,8 +9,6 @@
 #include <cstdint>
 #include <thread>
 #include <vector>
-
-#include "palpate/haptics/latest.hpp"
 
 namespace palpate {
 namespace {
@@ -23,7 +23,8 @@ struct Redundant {
 Redundant make_redundant(std::uint64_t serial) {
   Redundant value;
   value.serial = serial;
-  for (std::size_t i = 0; i < value.words.size(); ++i) value.words[i] = (serial + i) * 0x9E3779B97F4A7C15ull ^ (i << 40);
+  for (std::size_t i = 0; i < value.words.size(); ++i)
+    value.words[i] = (serial + i) * 0x9E3779B97F4A7C15ull ^ (i << 40);
   return value;
 }
 

@@ -87,7 +87,8 @@ TEST(DeformMesh, MatchesTheAnalyticSurfaceOfAFinePlane) {
     const float expected_z = r < dent_cutoff_sigmas * 3.0f ? -dent_gaussian(r, 1.5f, 3.0f) : 0.0f;
     EXPECT_NEAR(out.positions[v].z, expected_z, 1e-6f);
     const glm::vec3 analytic =
-        r > 0 ? glm::normalize(glm::vec3(dent_slope(r, 1.5f, 3.0f) * glm::vec2(p) / r, 1.0f)) : glm::vec3(0, 0, 1);
+        r > 0 ? glm::normalize(glm::vec3(dent_slope(r, 1.5f, 3.0f) * glm::vec2(p) / r, 1.0f))
+              : glm::vec3(0, 0, 1);
     worst = std::max(worst, std::acos(std::min(1.0f, glm::dot(out.normals[v], analytic))));
     EXPECT_NEAR(glm::dot(perturbed_normal({0, 0, 1}, p, {&dent, 1}), analytic), 1.0f, 1e-5f);
   }

@@ -20,8 +20,10 @@ double smallest_angle(const Mesh& m) {
   for (std::size_t c = 0; c < m.indices.size(); ++c) {
     const std::size_t t = c / 3 * 3;
     const glm::dvec3 p(m.positions[m.indices[c]]);
-    const glm::dvec3 a(m.positions[m.indices[t + (c - t + 1) % 3]]), b(m.positions[m.indices[t + (c - t + 2) % 3]]);
-    smallest = std::min(smallest, glm::degrees(std::acos(glm::dot(glm::normalize(a - p), glm::normalize(b - p)))));
+    const glm::dvec3 a(m.positions[m.indices[t + (c - t + 1) % 3]]),
+        b(m.positions[m.indices[t + (c - t + 2) % 3]]);
+    smallest =
+        std::min(smallest, glm::degrees(std::acos(glm::dot(glm::normalize(a - p), glm::normalize(b - p)))));
   }
   return smallest;
 }
@@ -34,7 +36,8 @@ double mean_smallest_angle(const Mesh& m) {
     for (int k = 0; k < 3; ++k) {
       const glm::dvec3 p(m.positions[m.indices[t + k]]), a(m.positions[m.indices[t + (k + 1) % 3]]),
           b(m.positions[m.indices[t + (k + 2) % 3]]);
-      smallest = std::min(smallest, glm::degrees(std::acos(glm::dot(glm::normalize(a - p), glm::normalize(b - p)))));
+      smallest =
+          std::min(smallest, glm::degrees(std::acos(glm::dot(glm::normalize(a - p), glm::normalize(b - p)))));
     }
     sum += smallest;
   }
@@ -44,7 +47,8 @@ double mean_smallest_angle(const Mesh& m) {
 std::size_t facing_centre(const Mesh& m, glm::dvec3 centre) {
   std::size_t n = 0;
   for (std::size_t t = 0; t < m.indices.size(); t += 3) {
-    const glm::dvec3 a = glm::dvec3(m.positions[m.indices[t]]) - centre, b = glm::dvec3(m.positions[m.indices[t + 1]]) - centre,
+    const glm::dvec3 a = glm::dvec3(m.positions[m.indices[t]]) - centre,
+                     b = glm::dvec3(m.positions[m.indices[t + 1]]) - centre,
                      c = glm::dvec3(m.positions[m.indices[t + 2]]) - centre;
     if (!(glm::dot(a, glm::cross(b, c)) > 0.0)) ++n;
   }
@@ -82,7 +86,8 @@ TEST(EdgeFlips, NeverFlipAcrossACrease) {
   flip_toward_delaunay(box, opposite, glm::dvec3(0.0), glm::radians(25.0));
   for (std::size_t t = 0; t < box.indices.size(); t += 3) {
     // Each triangle still lies in one face of the box: one coordinate is shared by its three corners.
-    const glm::vec3 a = box.positions[box.indices[t]], b = box.positions[box.indices[t + 1]], c = box.positions[box.indices[t + 2]];
+    const glm::vec3 a = box.positions[box.indices[t]], b = box.positions[box.indices[t + 1]],
+                    c = box.positions[box.indices[t + 2]];
     EXPECT_TRUE((a.x == b.x && b.x == c.x) || (a.y == b.y && b.y == c.y) || (a.z == b.z && b.z == c.z));
   }
 }

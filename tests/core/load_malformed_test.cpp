@@ -2,10 +2,10 @@
 // file (and the line where the parser knows it), never a crash, a hang or an empty mesh.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <fstream>
 #include <iterator>
 #include <random>
-#include <cctype>
 #include <sstream>
 #include <string>
 
@@ -28,7 +28,8 @@ std::filesystem::path write_bytes(const std::filesystem::path& file, const std::
 
 // Replaces, at the first occurrence of `marker`, the token that follows it (up to the next
 // whitespace) with `replacement`, failing the test when the marker is absent.
-std::string replace_token_after(const std::string& text, const std::string& marker, const std::string& replacement) {
+std::string replace_token_after(const std::string& text, const std::string& marker,
+                                const std::string& replacement) {
   const std::size_t at = text.find(marker);
   EXPECT_NE(at, std::string::npos) << marker;
   if (at == std::string::npos) return text;
@@ -40,7 +41,8 @@ std::string replace_token_after(const std::string& text, const std::string& mark
 }
 
 // Replaces the rest of the line after the first occurrence of `marker`.
-std::string replace_line_after(const std::string& text, const std::string& marker, const std::string& replacement) {
+std::string replace_line_after(const std::string& text, const std::string& marker,
+                               const std::string& replacement) {
   const std::size_t at = text.find(marker);
   EXPECT_NE(at, std::string::npos) << marker;
   if (at == std::string::npos) return text;
@@ -85,13 +87,15 @@ TEST_F(Malformed, VrmlCutInHalfNamesTheLineWhereItEnds) {
 
 TEST_F(Malformed, VrmlCoordIndexOutOfRangeIsCaughtBeforeCoinUsesIt) {
   const std::string text = read_bytes(data_ / "vrml/castle_teapot.wrl");
-  const auto file = write_bytes(scratch_ / "teapot_bad_index.wrl", replace_token_after(text, "coordIndex [", "99999"));
+  const auto file =
+      write_bytes(scratch_ / "teapot_bad_index.wrl", replace_token_after(text, "coordIndex [", "99999"));
   expect_load_error(file, "coordIndex[0] is 99999, but Coordinate.point has 1563 entries");
 }
 
 TEST_F(Malformed, VrmlNegativeIndexOtherThanTheSeparatorIsAnError) {
   const std::string text = read_bytes(data_ / "vrml/castle_teapot.wrl");
-  const auto file = write_bytes(scratch_ / "teapot_negative.wrl", replace_token_after(text, "coordIndex [", "-7"));
+  const auto file =
+      write_bytes(scratch_ / "teapot_negative.wrl", replace_token_after(text, "coordIndex [", "-7"));
   expect_load_error(file, "coordIndex[0] is -7");
 }
 
@@ -108,7 +112,9 @@ TEST_F(Malformed, VrmlInfiniteCoordinateIsRefusedNotReplacedByZero) {
   expect_load_error(file, "NaN, infinite or out of float range", 59);
 }
 
-TEST_F(Malformed, EmptyFile) { expect_load_error(write_bytes(scratch_ / "empty.wrl", ""), "file is empty"); }
+TEST_F(Malformed, EmptyFile) {
+  expect_load_error(write_bytes(scratch_ / "empty.wrl", ""), "file is empty");
+}
 
 TEST_F(Malformed, RandomBytesUnderAVrmlName) {
   std::mt19937 random(7);
@@ -121,7 +127,8 @@ TEST_F(Malformed, RandomBytesUnderAVrmlName) {
 
 TEST_F(Malformed, GzipCutInHalf) {
   const std::string bytes = read_bytes(data_ / "vrml/castle_regular_labirynth_chinchilla.wrl.gz");
-  expect_load_error(write_bytes(scratch_ / "cut.wrl.gz", bytes.substr(0, bytes.size() / 2)), "gzip data ends early");
+  expect_load_error(write_bytes(scratch_ / "cut.wrl.gz", bytes.substr(0, bytes.size() / 2)),
+                    "gzip data ends early");
 }
 
 TEST_F(Malformed, GzipWithCorruptBytes) {
@@ -186,13 +193,15 @@ TEST_F(Malformed, PlyFaceIndexOutOfRange) {
 
 TEST_F(Malformed, GiftiCutInHalfNamesTheXmlLine) {
   const std::string bytes = read_bytes(data_ / "surfaces/spm12_scalp_2562.surf.gii");
-  const Error e = expect_load_error(write_bytes(scratch_ / "cut.surf.gii", bytes.substr(0, bytes.size() / 2)), "malformed GIfTI XML");
+  const Error e = expect_load_error(write_bytes(scratch_ / "cut.surf.gii", bytes.substr(0, bytes.size() / 2)),
+                                    "malformed GIfTI XML");
   EXPECT_GT(e.line(), 0);
 }
 
 TEST_F(Malformed, GzippedGiftiCutInHalf) {
   const std::string bytes = read_bytes(data_ / "surfaces/fsaverage5_pial_left.gii.gz");
-  expect_load_error(write_bytes(scratch_ / "cut.gii.gz", bytes.substr(0, bytes.size() / 2)), "gzip data ends early");
+  expect_load_error(write_bytes(scratch_ / "cut.gii.gz", bytes.substr(0, bytes.size() / 2)),
+                    "gzip data ends early");
 }
 
 TEST_F(Malformed, GiftiWithCorruptBase64) {

@@ -26,7 +26,9 @@ struct ManifestRow {
   long vertices = -1;
 };
 
-long number_or_none(const std::string& field) { return field == "-" ? -1 : std::stol(field); }
+long number_or_none(const std::string& field) {
+  return field == "-" ? -1 : std::stol(field);
+}
 
 std::vector<ManifestRow> manifest_rows() {
   std::vector<ManifestRow> rows;
@@ -51,7 +53,7 @@ const std::map<std::string, std::string>& expected_failures() {
   static const std::map<std::string, std::string> failures{
       {"vrml/castle_tesselated_plane_proto.wrl", "has no triangle geometry"},  // the manifest's 0
       {"x3d/castle_axis.x3d.gz", "assimp found no triangle meshes"},  // assimp drops Collision's children
-      {"x3d/castle_blender_monkey.x3d", "ImageTexture"},             // assimp rejects the texture url
+      {"x3d/castle_blender_monkey.x3d", "ImageTexture"},              // assimp rejects the texture url
       {"x3d/castle_indexed_face_set_colors.x3dv", "X3D classic encoding (.x3dv) is not supported"},
       {"volumes/spm12_single_subj_T1.nii", "is a volume image"},
       {"volumes/spm12_avg152T1.nii", "is a volume image"},
@@ -64,8 +66,8 @@ const std::map<std::string, std::string>& expected_failures() {
 // splits vertices where normals or colours are discontinuous (VRML97's default creaseAngle 0 makes
 // every face flat) and Coin's primitives have seams, so the counts are larger by design.
 bool vertex_count_is_faithful(const ManifestRow& row) {
-  return row.format == "OBJ" || row.format.rfind("PLY", 0) == 0 || row.format.rfind("GIfTI", 0) == 0 || row.path == "vrml/castle_teapot.wrl" ||
-         row.path == "vrml/castle_collisions.wrl";
+  return row.format == "OBJ" || row.format.rfind("PLY", 0) == 0 || row.format.rfind("GIfTI", 0) == 0 ||
+         row.path == "vrml/castle_teapot.wrl" || row.path == "vrml/castle_collisions.wrl";
 }
 
 std::string test_name(const ManifestRow& row) {
@@ -94,7 +96,8 @@ TEST_P(ManifestFile, LoadsWithTheListedTriangleCountOrSaysWhatIsUnsupported) {
     } catch (const Error& e) {
       EXPECT_EQ(e.file(), file);
       EXPECT_NE(std::string(e.what()).find(failure->second), std::string::npos) << e.what();
-      EXPECT_NE(std::string(e.what()).find(row.path.substr(row.path.find('/') + 1)), std::string::npos) << e.what();
+      EXPECT_NE(std::string(e.what()).find(row.path.substr(row.path.find('/') + 1)), std::string::npos)
+          << e.what();
     }
     return;
   }
@@ -111,14 +114,17 @@ TEST_P(ManifestFile, LoadsWithTheListedTriangleCountOrSaysWhatIsUnsupported) {
 }
 
 INSTANTIATE_TEST_SUITE_P(SharedData, ManifestFile, ::testing::ValuesIn(manifest_rows()),
-                         [](const ::testing::TestParamInfo<ManifestRow>& param) { return test_name(param.param); });
+                         [](const ::testing::TestParamInfo<ManifestRow>& param) {
+                           return test_name(param.param);
+                         });
 
 // The closedness the manifest states survives loading (welding restored OBJ's split positions).
 TEST(ManifestTopology, ClosedSurfacesStayClosedAndOutward) {
   PALPATE_REQUIRE_SHARED_DATA(data);
-  for (const char* path : {"surfaces/odedstein_skull_low_resolution.obj", "canonical/odedstein_bunny_manifold.obj",
-                           "surfaces/fsaverage5_pial_left.gii.gz", "surfaces/spm12_cortex_20484.surf.gii",
-                           "surfaces/spm12_scalp_2562.surf.gii", "canonical/odedstein_armadillo.obj"}) {
+  for (const char* path :
+       {"surfaces/odedstein_skull_low_resolution.obj", "canonical/odedstein_bunny_manifold.obj",
+        "surfaces/fsaverage5_pial_left.gii.gz", "surfaces/spm12_cortex_20484.surf.gii",
+        "surfaces/spm12_scalp_2562.surf.gii", "canonical/odedstein_armadillo.obj"}) {
     SCOPED_TRACE(path);
     const Mesh mesh = load_mesh(data / path);
     const MeshTopology topology = analyze_topology(mesh);
@@ -129,7 +135,8 @@ TEST(ManifestTopology, ClosedSurfacesStayClosedAndOutward) {
     double volume = 0.0;
     for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
       volume += glm::dot(glm::dvec3(mesh.positions[mesh.indices[t]]),
-                         glm::cross(glm::dvec3(mesh.positions[mesh.indices[t + 1]]), glm::dvec3(mesh.positions[mesh.indices[t + 2]])));
+                         glm::cross(glm::dvec3(mesh.positions[mesh.indices[t + 1]]),
+                                    glm::dvec3(mesh.positions[mesh.indices[t + 2]])));
     }
     EXPECT_GT(volume, 0.0);
   }

@@ -49,8 +49,9 @@ TEST(LoadObj, PerFaceNormalsAreWeldedToTheFilesPositions) {
 }
 
 TEST(LoadObj, PolygonsAreTriangulatedAndGroupsKept) {
-  const std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
-                          "o left\nf 1 2 3 4\no right\nf 2 5 6 3\n";
+  const std::string obj =
+      "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 2 0 0\nv 2 1 0\n"
+      "o left\nf 1 2 3 4\no right\nf 2 5 6 3\n";
   const Scene scene = load_model(write_text("quads.obj", obj));
   EXPECT_EQ(scene.triangle_count(), 4u);
   EXPECT_EQ(scene.objects.size(), 2u);
@@ -58,7 +59,10 @@ TEST(LoadObj, PolygonsAreTriangulatedAndGroupsKept) {
 
 TEST(LoadStl, SharedCornersAreWelded) {
   std::string stl = "solid tetra\n";
-  const char* faces[4][3] = {{"0 0 0", "0 1 0", "1 0 0"}, {"0 0 0", "1 0 0", "0 0 1"}, {"0 0 0", "0 0 1", "0 1 0"}, {"1 0 0", "0 1 0", "0 0 1"}};
+  const char* faces[4][3] = {{"0 0 0", "0 1 0", "1 0 0"},
+                             {"0 0 0", "1 0 0", "0 0 1"},
+                             {"0 0 0", "0 0 1", "0 1 0"},
+                             {"1 0 0", "0 1 0", "0 0 1"}};
   for (const auto& face : faces) {
     stl += "facet normal 0 0 0\nouter loop\n";
     for (const char* v : face) stl += std::string("vertex ") + v + "\n";
@@ -71,7 +75,8 @@ TEST(LoadStl, SharedCornersAreWelded) {
 }
 
 TEST(LoadOff, ReadsAnIndexedMesh) {
-  const Mesh m = load_mesh(write_text("tetra.off", "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"));
+  const Mesh m = load_mesh(write_text(
+      "tetra.off", "OFF\n4 4 6\n0 0 0\n1 0 0\n0 1 0\n0 0 1\n3 0 2 1\n3 0 1 3\n3 0 3 2\n3 1 2 3\n"));
   EXPECT_EQ(m.vertex_count(), 4u);
   EXPECT_EQ(m.triangle_count(), 4u);
 }
@@ -79,12 +84,13 @@ TEST(LoadOff, ReadsAnIndexedMesh) {
 TEST(LoadPly, AsciiWithColours) {
   const std::string ply =
       "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n"
-      "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+      "property uchar red\nproperty uchar green\nproperty uchar blue\nelement face 1\nproperty list uchar "
+      "int vertex_indices\nend_header\n"
       "0 0 0 255 0 0\n1 0 0 0 255 0\n0 1 0 0 0 255\n3 0 1 2\n";
   const Mesh m = load_mesh(write_text("colours.ply", ply));
   ASSERT_EQ(m.colors.size(), 3u);
   for (std::size_t v = 0; v < 3; ++v) {
-    const glm::vec3 expected = m.positions[v] == glm::vec3(0, 0, 0) ? glm::vec3(1, 0, 0)
+    const glm::vec3 expected = m.positions[v] == glm::vec3(0, 0, 0)   ? glm::vec3(1, 0, 0)
                                : m.positions[v] == glm::vec3(1, 0, 0) ? glm::vec3(0, 1, 0)
                                                                       : glm::vec3(0, 0, 1);
     EXPECT_EQ(m.colors[v], expected);
@@ -130,7 +136,8 @@ TEST(SaveMesh, VrmlRoundTripKeepsCountsPositionsNormalsAndColours) {
   save_mesh(original, file);
   const Mesh back = load_mesh(file);
   EXPECT_EQ(back.vertex_count(), original.vertex_count());
-  expect_same_triangles(original, back, 1e-5f);  // 9 significant digits; Coin's float parsing rounds last bits
+  expect_same_triangles(original, back,
+                        1e-5f);  // 9 significant digits; Coin's float parsing rounds last bits
   ASSERT_EQ(back.colors.size(), back.vertex_count());
   for (std::size_t i = 0; i < original.indices.size(); ++i) {
     const std::uint32_t a = original.indices[i], b = back.indices[i];

@@ -1,15 +1,15 @@
 // Small hand-written VRML97, VRML 1.0 and Inventor files, each checking one thing Coin and palpate
 // must do right, against values worked out by hand.
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include <cmath>
 #include <fstream>
 #include <glm/geometric.hpp>
 #include <numbers>
 #include <string>
-#include <vector>
 #include <thread>
-#include <zlib.h>
+#include <vector>
 
 #include "palpate/core/error.hpp"
 #include "palpate/core/load.hpp"
@@ -36,13 +36,16 @@ double signed_volume(const Mesh& m) {
   double volume = 0.0;
   for (std::size_t t = 0; t < m.indices.size(); t += 3) {
     volume += glm::dot(glm::dvec3(m.positions[m.indices[t]]),
-                       glm::cross(glm::dvec3(m.positions[m.indices[t + 1]]), glm::dvec3(m.positions[m.indices[t + 2]]))) / 6.0;
+                       glm::cross(glm::dvec3(m.positions[m.indices[t + 1]]),
+                                  glm::dvec3(m.positions[m.indices[t + 2]]))) /
+              6.0;
   }
   return volume;
 }
 
 TEST(LoadVrml, FacetedCubeByDefaultCreaseAngleZero) {
-  const Mesh m = load_mesh(write_text("cube.wrl", "#VRML V2.0 utf8\nShape { geometry " + cube_face_set() + " }\n"));
+  const Mesh m =
+      load_mesh(write_text("cube.wrl", "#VRML V2.0 utf8\nShape { geometry " + cube_face_set() + " }\n"));
   EXPECT_EQ(m.triangle_count(), 12u);
   EXPECT_EQ(m.vertex_count(), 24u);  // 4 per face: flat normals split the corners
   EXPECT_NEAR(signed_volume(m), 1.0, 1e-6);
@@ -54,7 +57,8 @@ TEST(LoadVrml, FacetedCubeByDefaultCreaseAngleZero) {
 }
 
 TEST(LoadVrml, SmoothCubeWithLargeCreaseAngleIsClosed) {
-  const Mesh m = load_mesh(write_text("smooth.wrl", "#VRML V2.0 utf8\nShape { geometry " + cube_face_set("creaseAngle 3.14") + " }\n"));
+  const Mesh m = load_mesh(write_text(
+      "smooth.wrl", "#VRML V2.0 utf8\nShape { geometry " + cube_face_set("creaseAngle 3.14") + " }\n"));
   EXPECT_EQ(m.vertex_count(), 8u);
   EXPECT_TRUE(analyze_topology(m).closed());
   for (std::size_t v = 0; v < 8; ++v) {
@@ -70,9 +74,11 @@ TEST(LoadVrml, CreaseAngleSplitsOnlySharpEdges) {
   const float a = 10.0f * std::numbers::pi_v<float> / 180.0f;
   const std::string z = std::to_string(std::sin(a));
   const std::string x = std::to_string(1.0f + std::cos(a));
-  const std::string points = "0 0 0, 1 0 0, 1 1 0, 0 1 0, " + x + " 0 " + z + ", " + x + " 1 " + z + ", 0 0 -1, 0 1 -1";
+  const std::string points =
+      "0 0 0, 1 0 0, 1 1 0, 0 1 0, " + x + " 0 " + z + ", " + x + " 1 " + z + ", 0 0 -1, 0 1 -1";
   const auto face_set = [&](const std::string& crease) {
-    return "#VRML V2.0 utf8\nShape { geometry IndexedFaceSet { creaseAngle " + crease + " coord Coordinate { point [" + points +
+    return "#VRML V2.0 utf8\nShape { geometry IndexedFaceSet { creaseAngle " + crease +
+           " coord Coordinate { point [" + points +
            "] } coordIndex [0 1 2 3 -1, 1 4 5 2 -1, 6 0 3 7 -1] } }\n";
   };
   // 0.5 rad (28.6°) joins the roof (10°) but not the wall (90°): the edge 0-3 is split.
@@ -86,7 +92,8 @@ TEST(LoadVrml, CreaseAngleSplitsOnlySharpEdges) {
 TEST(LoadVrml, ColoursPerFaceSplitVerticesAndPerVertexKeepThem) {
   const std::string text =
       "#VRML V2.0 utf8\n"
-      "Shape { geometry IndexedFaceSet { creaseAngle 3 coord DEF C Coordinate { point [0 0 0, 1 0 0, 1 1 0, 0 1 0] }\n"
+      "Shape { geometry IndexedFaceSet { creaseAngle 3 coord DEF C Coordinate { point [0 0 0, 1 0 0, 1 1 0, "
+      "0 1 0] }\n"
       "  coordIndex [0 1 2 -1, 0 2 3 -1] colorPerVertex FALSE color Color { color [1 0 0, 0 1 0] } } }\n"
       "Transform { translation 5 0 0 children Shape { geometry IndexedFaceSet { creaseAngle 3 coord USE C\n"
       "  coordIndex [0 1 2 3 -1] color Color { color [1 0 0, 0 1 0, 0 0 1, 1 1 1] } } } }\n";
@@ -104,7 +111,7 @@ TEST(LoadVrml, ColoursPerFaceSplitVerticesAndPerVertexKeepThem) {
   ASSERT_EQ(per_vertex.colors.size(), 4u);
   for (std::size_t v = 0; v < 4; ++v) {
     const glm::vec3 p = per_vertex.positions[v] - glm::vec3(5, 0, 0);  // the Transform is baked in
-    const glm::vec3 expected = p == glm::vec3(0, 0, 0) ? glm::vec3(1, 0, 0)
+    const glm::vec3 expected = p == glm::vec3(0, 0, 0)   ? glm::vec3(1, 0, 0)
                                : p == glm::vec3(1, 0, 0) ? glm::vec3(0, 1, 0)
                                : p == glm::vec3(1, 1, 0) ? glm::vec3(0, 0, 1)
                                                          : glm::vec3(1, 1, 1);
@@ -113,9 +120,10 @@ TEST(LoadVrml, ColoursPerFaceSplitVerticesAndPerVertexKeepThem) {
 }
 
 TEST(LoadVrml, MaterialColourWithoutVertexColours) {
-  const Scene scene = load_model(write_text(
-      "material.wrl", "#VRML V2.0 utf8\nShape { appearance Appearance { material Material { diffuseColor 0.2 0.4 0.6 } } geometry " +
-                          cube_face_set() + " }\n"));
+  const Scene scene = load_model(write_text("material.wrl",
+                                            "#VRML V2.0 utf8\nShape { appearance Appearance { material "
+                                            "Material { diffuseColor 0.2 0.4 0.6 } } geometry " +
+                                                cube_face_set() + " }\n"));
   ASSERT_EQ(scene.objects.size(), 1u);
   EXPECT_TRUE(scene.objects[0].mesh.colors.empty());
   EXPECT_NEAR(scene.objects[0].material.color.r, 0.2f, 1e-6f);
@@ -124,9 +132,12 @@ TEST(LoadVrml, MaterialColourWithoutVertexColours) {
 }
 
 TEST(LoadVrml, DefUseInstancesGetTheirOwnTransforms) {
-  const std::string text = "#VRML V2.0 utf8\n"
-                           "DEF Box1 Transform { children DEF Cube Shape { geometry " + cube_face_set() + " } }\n"
-                           "Transform { translation 10 0 0 rotation 0 0 1 1.5707963 scale 2 2 2 children USE Cube }\n";
+  const std::string text =
+      "#VRML V2.0 utf8\n"
+      "DEF Box1 Transform { children DEF Cube Shape { geometry " +
+      cube_face_set() +
+      " } }\n"
+      "Transform { translation 10 0 0 rotation 0 0 1 1.5707963 scale 2 2 2 children USE Cube }\n";
   const Scene scene = load_model(write_text("def_use.wrl", text));
   ASSERT_EQ(scene.objects.size(), 2u);
   EXPECT_EQ(scene.objects[0].name, "Cube");
@@ -140,11 +151,14 @@ TEST(LoadVrml, DefUseInstancesGetTheirOwnTransforms) {
 }
 
 TEST(LoadVrml, MirroringTransformAndClockwiseFacesStayOutward) {
-  const std::string text = "#VRML V2.0 utf8\n"
-                           "Transform { scale -1 1 1 children Shape { geometry " + cube_face_set() + " } }\n"
-                           "Transform { translation 5 0 0 children Shape { geometry IndexedFaceSet { ccw FALSE"
-                           " coord Coordinate { point [0 0 0, 1 0 0, 1 1 0, 0 1 0, 0 0 1, 1 0 1, 1 1 1, 0 1 1] }"
-                           " coordIndex [0 1 2 3 -1, 4 7 6 5 -1, 0 4 5 1 -1, 2 6 7 3 -1, 1 5 6 2 -1, 0 3 7 4 -1] } } }\n";
+  const std::string text =
+      "#VRML V2.0 utf8\n"
+      "Transform { scale -1 1 1 children Shape { geometry " +
+      cube_face_set() +
+      " } }\n"
+      "Transform { translation 5 0 0 children Shape { geometry IndexedFaceSet { ccw FALSE"
+      " coord Coordinate { point [0 0 0, 1 0 0, 1 1 0, 0 1 0, 0 0 1, 1 0 1, 1 1 1, 0 1 1] }"
+      " coordIndex [0 1 2 3 -1, 4 7 6 5 -1, 0 4 5 1 -1, 2 6 7 3 -1, 1 5 6 2 -1, 0 3 7 4 -1] } } }\n";
   const Scene scene = load_model(write_text("mirror.wrl", text));
   ASSERT_EQ(scene.objects.size(), 2u);
   EXPECT_NEAR(signed_volume(scene.objects[0].mesh), 1.0, 1e-6);
@@ -152,9 +166,10 @@ TEST(LoadVrml, MirroringTransformAndClockwiseFacesStayOutward) {
 }
 
 TEST(LoadVrml, ExplicitNormalsAreKept) {
-  const std::string text = "#VRML V2.0 utf8\nShape { geometry IndexedFaceSet {"
-                           " coord Coordinate { point [0 0 0, 1 0 0, 1 1 0, 0 1 0] } coordIndex [0 1 2 3 -1]"
-                           " normal Normal { vector [0 0.6 0.8] } normalPerVertex FALSE } }\n";
+  const std::string text =
+      "#VRML V2.0 utf8\nShape { geometry IndexedFaceSet {"
+      " coord Coordinate { point [0 0 0, 1 0 0, 1 1 0, 0 1 0] } coordIndex [0 1 2 3 -1]"
+      " normal Normal { vector [0 0.6 0.8] } normalPerVertex FALSE } }\n";
   const Mesh m = load_mesh(write_text("normals.wrl", text));
   EXPECT_EQ(m.vertex_count(), 4u);
   for (const glm::vec3& n : m.normals) {
@@ -166,8 +181,9 @@ TEST(LoadVrml, ExplicitNormalsAreKept) {
 TEST(LoadVrml, PrimitivesAtCoinsDefaultComplexity) {
   // Coin's tessellation at its default complexity 0.5: a Sphere is 390 triangles (as in the
   // manifest: 104 spheres = 40,560), a default Cone 38 and Cylinder 76 (with their caps), a Box 12.
-  const std::string text = "#VRML V2.0 utf8\nShape { geometry Sphere { radius 2 } }\nShape { geometry Box { size 1 2 3 } }\n"
-                           "Shape { geometry Cone { } }\nShape { geometry Cylinder { } }\n";
+  const std::string text =
+      "#VRML V2.0 utf8\nShape { geometry Sphere { radius 2 } }\nShape { geometry Box { size 1 2 3 } }\n"
+      "Shape { geometry Cone { } }\nShape { geometry Cylinder { } }\n";
   const Scene scene = load_model(write_text("primitives.wrl", text));
   ASSERT_EQ(scene.objects.size(), 4u);
   EXPECT_EQ(scene.objects[0].mesh.triangle_count(), 390u);
@@ -189,9 +205,11 @@ TEST(LoadVrml, CollisionProxyIsNotDrawn) {
 }
 
 TEST(LoadVrml, TextAndLinesAreSkippedWithWarnings) {
-  const std::string text = "#VRML V2.0 utf8\nShape { geometry Text { string \"hello\" } }\n"
-                           "Shape { geometry IndexedLineSet { coord Coordinate { point [0 0 0, 1 0 0] } coordIndex [0 1] } }\n"
-                           "Shape { geometry " + cube_face_set() + " }\n";
+  const std::string text =
+      "#VRML V2.0 utf8\nShape { geometry Text { string \"hello\" } }\n"
+      "Shape { geometry IndexedLineSet { coord Coordinate { point [0 0 0, 1 0 0] } coordIndex [0 1] } }\n"
+      "Shape { geometry " +
+      cube_face_set() + " }\n";
   std::vector<std::string> warnings;
   LoadOptions options;
   options.on_warning = [&](const std::string& w) { warnings.push_back(w); };
@@ -204,10 +222,12 @@ TEST(LoadVrml, TextAndLinesAreSkippedWithWarnings) {
 }
 
 TEST(LoadVrml, UnknownFieldsAreDroppedWithAWarning) {
-  const std::string text = "#VRML V2.0 utf8\n"
-                           "Shape { appearance Appearance { material Material { diffuseColor 1 0 0 mirror 0.5 }\n"
-                           "  blendMode BlendMode { destFactor \"ONE\" } }\n"
-                           "  geometry " + cube_face_set() + " }\n";
+  const std::string text =
+      "#VRML V2.0 utf8\n"
+      "Shape { appearance Appearance { material Material { diffuseColor 1 0 0 mirror 0.5 }\n"
+      "  blendMode BlendMode { destFactor \"ONE\" } }\n"
+      "  geometry " +
+      cube_face_set() + " }\n";
   std::vector<std::string> warnings;
   LoadOptions options;
   options.on_warning = [&](const std::string& w) { warnings.push_back(w); };
@@ -215,8 +235,11 @@ TEST(LoadVrml, UnknownFieldsAreDroppedWithAWarning) {
   EXPECT_EQ(scene.triangle_count(), 12u);
   EXPECT_EQ(scene.objects[0].material.color, glm::vec3(1, 0, 0));
   ASSERT_EQ(warnings.size(), 2u);
-  EXPECT_NE(warnings[0].find(":2: dropped the non-standard field \"mirror\" of Material"), std::string::npos) << warnings[0];
-  EXPECT_NE(warnings[1].find(":3: dropped the non-standard field \"blendMode\" of Appearance"), std::string::npos) << warnings[1];
+  EXPECT_NE(warnings[0].find(":2: dropped the non-standard field \"mirror\" of Material"), std::string::npos)
+      << warnings[0];
+  EXPECT_NE(warnings[1].find(":3: dropped the non-standard field \"blendMode\" of Appearance"),
+            std::string::npos)
+      << warnings[1];
 }
 
 TEST(LoadVrml, Vrml1SeparatorStateMaterialBindingAndClockwiseHints) {
@@ -263,18 +286,22 @@ TEST(LoadVrml, GzipIsDetectedByContentNotName) {
 }
 
 TEST(LoadVrml, BadColourIndexIsAnError) {
-  const std::string text = "#VRML V2.0 utf8\nShape { geometry IndexedFaceSet { coord Coordinate { point [0 0 0, 1 0 0, 1 1 0] }"
-                           " coordIndex [0 1 2] colorPerVertex FALSE color Color { color [1 0 0] } colorIndex [3] } }\n";
+  const std::string text =
+      "#VRML V2.0 utf8\nShape { geometry IndexedFaceSet { coord Coordinate { point [0 0 0, 1 0 0, 1 1 0] }"
+      " coordIndex [0 1 2] colorPerVertex FALSE color Color { color [1 0 0] } colorIndex [3] } }\n";
   try {
     load_model(write_text("bad_colour.wrl", text));
     FAIL() << "loaded";
   } catch (const Error& e) {
-    EXPECT_NE(e.detail().find("colorIndex[0] is 3, but Color.color has 1 entries"), std::string::npos) << e.what();
+    EXPECT_NE(e.detail().find("colorIndex[0] is 3, but Color.color has 1 entries"), std::string::npos)
+        << e.what();
   }
 }
 
 TEST(LoadVrml, SeveralThreadsLoadAtOnce) {
-  const auto file = write_text("threads.wrl", "#VRML V2.0 utf8\nShape { geometry Sphere { } }\nShape { geometry " + cube_face_set() + " }\n");
+  const auto file =
+      write_text("threads.wrl", "#VRML V2.0 utf8\nShape { geometry Sphere { } }\nShape { geometry " +
+                                    cube_face_set() + " }\n");
   std::vector<std::size_t> counts(4, 0);
   std::vector<std::thread> threads;
   for (std::size_t i = 0; i < counts.size(); ++i) {

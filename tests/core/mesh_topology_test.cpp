@@ -45,7 +45,8 @@ TEST(MeshTopology, OpenFlippedAndNonManifold) {
 TEST(ComputeVertexNormals, PointOutwardOnATetrahedron) {
   const Mesh m = tetrahedron();
   const glm::vec3 centre(0.25f);
-  for (std::size_t v = 0; v < m.vertex_count(); ++v) EXPECT_GT(glm::dot(m.normals[v], m.positions[v] - centre), 0.0f);
+  for (std::size_t v = 0; v < m.vertex_count(); ++v)
+    EXPECT_GT(glm::dot(m.normals[v], m.positions[v] - centre), 0.0f);
 }
 
 }  // namespace

@@ -44,7 +44,8 @@ TEST(OrbitCamera, PitchStaysOffThePolesAndFramingSeesTheBox) {
   const Bounds box{{-80, -100, -60}, {80, 100, 60}};
   const OrbitCamera framed = frame_bounds(box, 0.3f, 0.2f);
   for (int i = 0; i < 8; ++i) {
-    const glm::vec3 corner{i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y, i & 4 ? box.max.z : box.min.z};
+    const glm::vec3 corner{i & 1 ? box.max.x : box.min.x, i & 2 ? box.max.y : box.min.y,
+                           i & 4 ? box.max.z : box.min.z};
     const glm::vec3 ndc = project(framed, corner, 1.0f);
     EXPECT_LE(std::abs(ndc.x), 1.0f);
     EXPECT_LE(std::abs(ndc.y), 1.0f);

@@ -14,8 +14,8 @@
 #include <unordered_map>
 #include <vector>
 
-#include "palpate/core/error.hpp"
 #include "mesh_expectations.hpp"
+#include "palpate/core/error.hpp"
 #include "palpate/core/mesh_topology.hpp"
 
 namespace palpate {
@@ -31,14 +31,17 @@ const Mesh& skin() {
   return mesh;
 }
 
-glm::dvec3 corner(const Mesh& m, std::size_t t, int k) { return glm::dvec3(m.positions[m.indices[3 * t + k]]); }
+glm::dvec3 corner(const Mesh& m, std::size_t t, int k) {
+  return glm::dvec3(m.positions[m.indices[3 * t + k]]);
+}
 
 double min_angle_deg(const Mesh& m, std::size_t t) {
   double smallest = 180.0;
   for (int k = 0; k < 3; ++k) {
     const glm::dvec3 e1 = glm::normalize(corner(m, t, (k + 1) % 3) - corner(m, t, k));
     const glm::dvec3 e2 = glm::normalize(corner(m, t, (k + 2) % 3) - corner(m, t, k));
-    smallest = std::min(smallest, std::acos(std::clamp(glm::dot(e1, e2), -1.0, 1.0)) * 180.0 / std::numbers::pi);
+    smallest =
+        std::min(smallest, std::acos(std::clamp(glm::dot(e1, e2), -1.0, 1.0)) * 180.0 / std::numbers::pi);
   }
   return smallest;
 }
@@ -63,7 +66,8 @@ void expect_star_shaped(const Mesh& m, glm::dvec3 centre) {
     if (!(volume > 0.0)) ++turned;
     // Van Oosterom and Strackee's solid angle of a triangle.
     const double la = glm::length(a), lb = glm::length(b), lc = glm::length(c);
-    solid_angle += 2.0 * std::atan2(volume, la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb + glm::dot(b, c) * la);
+    solid_angle += 2.0 * std::atan2(volume, la * lb * lc + glm::dot(a, b) * lc + glm::dot(a, c) * lb +
+                                                glm::dot(b, c) * la);
   }
   EXPECT_EQ(turned, 0u) << "triangles facing the star centre";
   EXPECT_NEAR(solid_angle, 4.0 * std::numbers::pi, 1e-6);
@@ -131,12 +135,13 @@ TEST(BrainPhantom, HasTheSizeOfAnAdultBrainAroundTheOrigin) {
 TEST(SkinPhantom, HasTheSizeOfAHeadWithAFaceInFront) {
   const Bounds b = bounds(skin());
   EXPECT_NEAR(b.size().x, 158.0f, 8.0f);
-  EXPECT_GT(b.max.y, 105.0f);  // the nose
+  EXPECT_GT(b.max.y, 105.0f);   // the nose
   EXPECT_LT(b.min.z, -180.0f);  // the neck
   // Back of the head to the forehead, at the level of the brain's centre: about 190 mm.
   float back = 0.0f, front = 0.0f;
   for (const glm::vec3& p : skin().positions) {
-    if (std::abs(p.x) < 3.0f && std::abs(p.z) < 3.0f) back = std::min(back, p.y), front = std::max(front, p.y);
+    if (std::abs(p.x) < 3.0f && std::abs(p.z) < 3.0f)
+      back = std::min(back, p.y), front = std::max(front, p.y);
   }
   EXPECT_NEAR(front - back, 192.0f, 8.0f);
   // The nose is the frontmost part, in the middle, below the eyes.
@@ -198,11 +203,12 @@ class PointGrid {
 
 // Parity of the crossings of the upward ray from p with the mesh's triangles: odd means inside. The ray
 // is nudged off the grid of float coordinates so that it meets no edge exactly.
-bool inside(const Mesh& m, const std::vector<std::vector<std::uint32_t>>& columns, glm::dvec2 origin, double cell,
-            int width, glm::dvec3 p) {
+bool inside(const Mesh& m, const std::vector<std::vector<std::uint32_t>>& columns, glm::dvec2 origin,
+            double cell, int width, glm::dvec3 p) {
   const glm::dvec2 q(p.x + 1.234567e-4, p.y + 2.345678e-4);
   const glm::ivec2 c(int(std::floor((q.x - origin.x) / cell)), int(std::floor((q.y - origin.y) / cell)));
-  if (c.x < 0 || c.y < 0 || c.x >= width || std::size_t(c.y) * std::size_t(width) >= columns.size()) return false;
+  if (c.x < 0 || c.y < 0 || c.x >= width || std::size_t(c.y) * std::size_t(width) >= columns.size())
+    return false;
   int crossings = 0;
   for (std::uint32_t t : columns[std::size_t(c.y) * std::size_t(width) + std::size_t(c.x)]) {
     const glm::dvec3 a = corner(m, t, 0), b = corner(m, t, 1), d = corner(m, t, 2);
@@ -226,7 +232,8 @@ TEST(Phantoms, SkinEnclosesTheBrainWithRoomForSkullAndCsf) {
   std::vector<std::vector<std::uint32_t>> columns(std::size_t(width) * std::size_t(height));
   for (std::uint32_t t = 0; t < s.triangle_count(); ++t) {
     glm::dvec2 lo(1e9), hi(-1e9);
-    for (int k = 0; k < 3; ++k) lo = glm::min(lo, glm::dvec2(corner(s, t, k))), hi = glm::max(hi, glm::dvec2(corner(s, t, k)));
+    for (int k = 0; k < 3; ++k)
+      lo = glm::min(lo, glm::dvec2(corner(s, t, k))), hi = glm::max(hi, glm::dvec2(corner(s, t, k)));
     for (int y = int((lo.y - origin.y) / cell); y <= int((hi.y - origin.y) / cell); ++y) {
       for (int x = int((lo.x - origin.x) / cell); x <= int((hi.x - origin.x) / cell); ++x) {
         columns[std::size_t(y) * std::size_t(width) + std::size_t(x)].push_back(t);
@@ -257,7 +264,8 @@ TEST(Phantoms, SkinEnclosesTheBrainWithRoomForSkullAndCsf) {
     double gap = 1e9;
     for (std::uint32_t v : near) {
       for (std::uint32_t t : triangles_at[v]) {
-        gap = std::min(gap, distance_to_triangle(glm::dvec3(p), corner(s, t, 0), corner(s, t, 1), corner(s, t, 2)));
+        gap = std::min(
+            gap, distance_to_triangle(glm::dvec3(p), corner(s, t, 0), corner(s, t, 1), corner(s, t, 2)));
       }
     }
     smallest_gap = std::min(smallest_gap, gap);
@@ -271,7 +279,8 @@ TEST(Phantoms, SkinEnclosesTheBrainWithRoomForSkullAndCsf) {
 // Shortest paths along the mesh's edges (Dijkstra), from one vertex out to a limit.
 class SurfaceDistances {
  public:
-  explicit SurfaceDistances(const Mesh& m) : mesh_(m), next_(m.vertex_count()), distance_(m.vertex_count(), far) {
+  explicit SurfaceDistances(const Mesh& m)
+      : mesh_(m), next_(m.vertex_count()), distance_(m.vertex_count(), far) {
     for (std::size_t t = 0; t < m.triangle_count(); ++t) {
       for (int k = 0; k < 3; ++k) next_[m.indices[3 * t + k]].push_back(m.indices[3 * t + (k + 1) % 3]);
     }
@@ -396,7 +405,8 @@ void expect_quality(const Mesh& m, QualityBounds bounds) {
       const auto [found, inserted] = first.try_emplace(std::min(a, b) << 32 | std::max(a, b), t);
       if (inserted) continue;
       const auto normal = [&](std::size_t u) {
-        return glm::normalize(glm::cross(corner(m, u, 1) - corner(m, u, 0), corner(m, u, 2) - corner(m, u, 0)));
+        return glm::normalize(
+            glm::cross(corner(m, u, 1) - corner(m, u, 0), corner(m, u, 2) - corner(m, u, 0)));
       };
       const double turn = std::acos(std::clamp(glm::dot(normal(t), normal(found->second)), -1.0, 1.0));
       ++edges;
@@ -407,9 +417,13 @@ void expect_quality(const Mesh& m, QualityBounds bounds) {
   EXPECT_LE(double(sharp) / double(edges), bounds.sharp_turn_share) << sharp << " of " << edges << " edges";
 }
 
-TEST(BrainPhantom, TrianglesAreWellShaped) { expect_quality(brain(), {2.0, 20.0, 150.0, 2e-4}); }
+TEST(BrainPhantom, TrianglesAreWellShaped) {
+  expect_quality(brain(), {2.0, 20.0, 150.0, 2e-4});
+}
 
-TEST(SkinPhantom, TrianglesAreWellShaped) { expect_quality(skin(), {12.0, 18.0, 90.0, 0.0}); }
+TEST(SkinPhantom, TrianglesAreWellShaped) {
+  expect_quality(skin(), {12.0, 18.0, 90.0, 0.0});
+}
 
 }  // namespace
 }  // namespace palpate

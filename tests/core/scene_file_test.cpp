@@ -72,18 +72,24 @@ visible = false
 }
 
 TEST(SceneFile, ErrorsNameTheFileAndLine) {
-  EXPECT_EQ(load_error("unknown_key", "[[object]]\nname = \"a\"\nmesh = \"phantom:skin\"\nsigma = 3\n").line(), 4);
-  EXPECT_EQ(load_error("wrong_type", "[[object]]\nname = \"a\"\nmesh = \"phantom:skin\"\nvisible = \"yes\"\n").line(), 4);
-  const Error range = load_error("range", "[[object]]\nname = \"a\"\nmesh = \"phantom:skin\"\n\nsigma_mm = -2\n");
+  EXPECT_EQ(
+      load_error("unknown_key", "[[object]]\nname = \"a\"\nmesh = \"phantom:skin\"\nsigma = 3\n").line(), 4);
+  EXPECT_EQ(load_error("wrong_type", "[[object]]\nname = \"a\"\nmesh = \"phantom:skin\"\nvisible = \"yes\"\n")
+                .line(),
+            4);
+  const Error range =
+      load_error("range", "[[object]]\nname = \"a\"\nmesh = \"phantom:skin\"\n\nsigma_mm = -2\n");
   EXPECT_EQ(range.line(), 5);
   EXPECT_NE(std::string(range.what()).find("out of range"), std::string::npos);
-  EXPECT_EQ(load_error("color", "[[object]]\nname = \"a\"\nmesh = \"phantom:skin\"\ncolor = [1, 2]\n").line(), 4);
+  EXPECT_EQ(load_error("color", "[[object]]\nname = \"a\"\nmesh = \"phantom:skin\"\ncolor = [1, 2]\n").line(),
+            4);
   EXPECT_EQ(load_error("syntax", "[[object]]\nname = \"a\nmesh = 1\n").line(), 2);
   EXPECT_EQ(load_error("top_key", "title = \"x\"\n").line(), 1);
   const Error missing = load_error("missing_mesh", "[[object]]\nname = \"a\"\nmesh = \"nowhere.ply\"\n");
   EXPECT_EQ(missing.line(), 1);
   EXPECT_NE(std::string(missing.what()).find("nowhere.ply"), std::string::npos);
-  EXPECT_NE(std::string(load_error("no_objects", "# empty\n").what()).find("no [[object]]"), std::string::npos);
+  EXPECT_NE(std::string(load_error("no_objects", "# empty\n").what()).find("no [[object]]"),
+            std::string::npos);
   EXPECT_NE(std::string(load_error("no_name", "[[object]]\nmesh = \"phantom:skin\"\n").what()).find("'name'"),
             std::string::npos);
 }

@@ -49,7 +49,8 @@ TEST(Box, IsClosedWithOutwardNormals) {
   float volume = 0.0f;
   for (std::size_t t3 = 0; t3 < m.indices.size(); t3 += 3) {
     volume += glm::dot(m.positions[m.indices[t3]],
-                       glm::cross(m.positions[m.indices[t3 + 1]], m.positions[m.indices[t3 + 2]])) / 6.0f;
+                       glm::cross(m.positions[m.indices[t3 + 1]], m.positions[m.indices[t3 + 2]])) /
+              6.0f;
   }
   EXPECT_NEAR(volume, 48.0f, 1e-4f);
 }

@@ -49,7 +49,8 @@ TEST(SlotProfile, PlacesPointsOnTheProfileInOrderAndEvenlyAlongIt) {
 }
 
 TEST(SlotProfile, FadesToAFlatSurfaceAsItGetsShallow) {
-  const SlotProfile shallow(0.5, SlotShape(1.0, 1.5, 85.0 * degrees));  // too shallow for its arcs at 85 degrees
+  const SlotProfile shallow(0.5,
+                            SlotShape(1.0, 1.5, 85.0 * degrees));  // too shallow for its arcs at 85 degrees
   double steepest = 0.0;
   for (double x = 0.0; x < 3.0; x += 0.01) {
     steepest = std::max(steepest, (shallow.depth_at(x) - shallow.depth_at(x + 0.01)) / 0.01);

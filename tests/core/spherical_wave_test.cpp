@@ -19,9 +19,13 @@ glm::dvec3 spiral_point(int i, int count) {
 }
 
 // Tangent directions at u.
-glm::dvec3 tangent(glm::dvec3 u) { return glm::normalize(glm::cross(u, glm::dvec3(0.3, 0.5, 0.7))); }
+glm::dvec3 tangent(glm::dvec3 u) {
+  return glm::normalize(glm::cross(u, glm::dvec3(0.3, 0.5, 0.7)));
+}
 
-double value(const SphericalWave& wave, glm::dvec3 p) { return wave(glm::normalize(p)).value; }
+double value(const SphericalWave& wave, glm::dvec3 p) {
+  return wave(glm::normalize(p)).value;
+}
 
 TEST(SphericalWave, GradientIsTheTangentialDerivative) {
   const SphericalWave wave(15, 42);
@@ -47,7 +51,8 @@ TEST(SphericalWave, IsAnEigenfunctionOfTheSphericalLaplacian) {
     constexpr double h = 1e-3;
     const auto along = [&](glm::dvec3 t, double a) { return wave(std::cos(a) * u + std::sin(a) * t).value; };
     const double f = wave(u).value;
-    const double laplacian = (along(t1, h) + along(t1, -h) + along(t2, h) + along(t2, -h) - 4.0 * f) / (h * h);
+    const double laplacian =
+        (along(t1, h) + along(t1, -h) + along(t2, h) + along(t2, -h) - 4.0 * f) / (h * h);
     EXPECT_NEAR(laplacian, -132.0 * f, 1e-3 * 132.0 * wave.rms());
   }
 }

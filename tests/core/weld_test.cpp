@@ -40,8 +40,9 @@ TEST(MeshFromSoup, SmoothNormalIsAreaWeighted) {
 
 TEST(MeshFromSoup, ColoursSplitVertices) {
   TriangleSoup soup = folded_strip(0.0f);
-  soup.colors = {glm::vec3(1, 0, 0), glm::vec3(1, 0, 0), glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 1, 0),
-                 glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), glm::vec3(1, 0, 0), glm::vec3(1, 0, 0)};
+  soup.colors = {glm::vec3(1, 0, 0), glm::vec3(1, 0, 0), glm::vec3(1, 0, 0),
+                 glm::vec3(0, 1, 0), glm::vec3(0, 1, 0), glm::vec3(0, 1, 0),
+                 glm::vec3(1, 0, 0), glm::vec3(1, 0, 0), glm::vec3(1, 0, 0)};
   const Mesh m = mesh_from_soup(soup, std::numbers::pi_v<float>);
   EXPECT_EQ(m.vertex_count(), 7u);  // a and c in two colours each, b, d and e in one
   EXPECT_EQ(m.colors.size(), 7u);

@@ -141,7 +141,8 @@ TEST_F(DentedSphere, DisplacedPositionsEqualTheCpuReference) {
     const glm::vec3 cpu = displaced_position(v, n, dents);
     worst_relative = std::max(worst_relative, glm::distance(gpu.displaced[i], cpu) / glm::length(cpu));
     // The fragment stage's own evaluation of the displacement, with which it lights the fragment.
-    worst_relative = std::max(worst_relative, glm::distance(gpu.fragment_displaced[i], cpu) / glm::length(cpu));
+    worst_relative =
+        std::max(worst_relative, glm::distance(gpu.fragment_displaced[i], cpu) / glm::length(cpu));
     // The displacement itself, to the depth of the deepest dent: a stricter view than the position.
     worst_displacement = std::max(worst_displacement, glm::distance(gpu.displaced[i] - v, cpu - v) / 4.0f);
     if (glm::distance(cpu, v) > 1e-3f) ++moved;
@@ -227,8 +228,8 @@ TEST(InsertDeformGlsl, GoesRightAfterTheVersionLine) {
 
 TEST(DeformBlock, AttachToAProgramWithoutTheBlockIsAClearError) {
   test::gl_context();
-  const ShaderProgram program("no deformation here",
-                              "#version 450 core\nvoid main() { gl_Position = vec4(0.0); }\n", empty_fragment);
+  const ShaderProgram program(
+      "no deformation here", "#version 450 core\nvoid main() { gl_Position = vec4(0.0); }\n", empty_fragment);
   const DeformBlock block;
   EXPECT_THAT([&] { block.attach(program.id()); },
               testing::ThrowsMessage<Error>(testing::HasSubstr("no active uniform block PalpateDeform")));

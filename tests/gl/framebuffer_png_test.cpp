@@ -1,7 +1,6 @@
 // Offscreen targets and PNG capture: what is drawn is what is read back and what the file holds.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
-
 #include <stb/stb_image.h>
 
 #include <vector>
@@ -34,21 +33,27 @@ TEST(Framebuffer, ReadsBackWhatWasDrawnBottomRowFirst) {
     paint_halves(target);
     const std::vector<std::uint8_t> pixels = target.read_rgba8();
     ASSERT_EQ(pixels.size(), 64u * 32u * 4u);
-    EXPECT_THAT(std::vector<std::uint8_t>(pixels.begin(), pixels.begin() + 4), testing::ElementsAre(255, 0, 0, 255));
-    EXPECT_THAT(std::vector<std::uint8_t>(pixels.end() - 4, pixels.end()), testing::ElementsAre(0, 0, 255, 255));
+    EXPECT_THAT(std::vector<std::uint8_t>(pixels.begin(), pixels.begin() + 4),
+                testing::ElementsAre(255, 0, 0, 255));
+    EXPECT_THAT(std::vector<std::uint8_t>(pixels.end() - 4, pixels.end()),
+                testing::ElementsAre(0, 0, 255, 255));
   }
   const Framebuffer floats({8, 8, ColorFormat::rgba32f});
   floats.bind();
   glClearColor(-0.25f, 0.5f, 0.75f, 1.0f);
   glClear(GL_COLOR_BUFFER_BIT);
   const std::vector<float> values = floats.read_rgba_float();
-  EXPECT_THAT(std::vector<float>(values.begin(), values.begin() + 4), testing::ElementsAre(-0.25f, 0.5f, 0.75f, 1.0f));
+  EXPECT_THAT(std::vector<float>(values.begin(), values.begin() + 4),
+              testing::ElementsAre(-0.25f, 0.5f, 0.75f, 1.0f));
 }
 
 TEST(Framebuffer, TooManySamplesIsAClearError) {
   test::gl_context();
-  EXPECT_THAT([] { Framebuffer target({16, 16, ColorFormat::rgba8, 4096}); },
-              testing::ThrowsMessage<Error>(testing::HasSubstr("4096 samples asked")));
+  EXPECT_THAT(
+      [] {
+        Framebuffer target({16, 16, ColorFormat::rgba8, 4096});
+      },
+      testing::ThrowsMessage<Error>(testing::HasSubstr("4096 samples asked")));
 }
 
 TEST(SavePng, WritesTheImageTopRowFirst) {
@@ -62,7 +67,8 @@ TEST(SavePng, WritesTheImageTopRowFirst) {
   ASSERT_NE(image, nullptr);
   EXPECT_EQ(width, 40);
   EXPECT_EQ(height, 20);
-  EXPECT_THAT(std::vector<std::uint8_t>(image, image + 4), testing::ElementsAre(0, 0, 255, 255));  // top: blue
+  EXPECT_THAT(std::vector<std::uint8_t>(image, image + 4),
+              testing::ElementsAre(0, 0, 255, 255));  // top: blue
   EXPECT_THAT(std::vector<std::uint8_t>(image + 40 * 20 * 4 - 4, image + 40 * 20 * 4),
               testing::ElementsAre(255, 0, 0, 255));
   stbi_image_free(image);
@@ -70,7 +76,8 @@ TEST(SavePng, WritesTheImageTopRowFirst) {
 
 TEST(SavePng, BadSizeOrPathIsAClearError) {
   const std::vector<std::uint8_t> pixels(4 * 4 * 4, 0);
-  EXPECT_THAT([&] { save_png("x.png", 5, 4, pixels); }, testing::ThrowsMessage<Error>(testing::HasSubstr("5x4")));
+  EXPECT_THAT([&] { save_png("x.png", 5, 4, pixels); },
+              testing::ThrowsMessage<Error>(testing::HasSubstr("5x4")));
   EXPECT_THAT([&] { save_png("/nonexistent-folder/x.png", 4, 4, pixels); },
               testing::ThrowsMessage<Error>(testing::HasSubstr("/nonexistent-folder/x.png")));
 }

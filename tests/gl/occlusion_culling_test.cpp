@@ -87,7 +87,8 @@ class SceneTarget {
 
 std::size_t differing_pixels(const std::vector<std::uint8_t>& a, const std::vector<std::uint8_t>& b) {
   std::size_t count = 0;
-  for (std::size_t i = 0; i < a.size(); i += 4) count += !std::equal(a.begin() + long(i), a.begin() + long(i) + 4, b.begin() + long(i));
+  for (std::size_t i = 0; i < a.size(); i += 4)
+    count += !std::equal(a.begin() + long(i), a.begin() + long(i) + 4, b.begin() + long(i));
   return count;
 }
 
@@ -119,7 +120,8 @@ TEST(OcclusionCulling, FromOutsideTheHiddenBrainIsCulled) {
     }
   }
   for (const glm::vec3& direction : directions) {
-    SCOPED_TRACE(testing::Message() << "view from " << direction.x << ", " << direction.y << ", " << direction.z);
+    SCOPED_TRACE(testing::Message() << "view from " << direction.x << ", " << direction.y << ", "
+                                    << direction.z);
     const Frame frame = target.draw_checked(outside(scene, direction));
     EXPECT_EQ(frame.result.occlusion_tested, 1);
     EXPECT_EQ(frame.result.occlusion_culled, 1);
@@ -140,7 +142,9 @@ TEST(OcclusionCulling, FromInsideTheSkinTheBrainIsDrawn) {
   const Scene brain_alone = default_scene_with(false);
   SceneTarget target(scene), reference(brain_alone);
   const auto& positions = scene.objects[brain].mesh.positions;
-  const float top = std::max_element(positions.begin(), positions.end(), [](glm::vec3 a, glm::vec3 b) { return a.z < b.z; })->z;
+  const float top = std::max_element(positions.begin(), positions.end(), [](glm::vec3 a, glm::vec3 b) {
+                      return a.z < b.z;
+                    })->z;
 
   // 5 mm over the top of the brain, in the gap under the skin, looking down: the query runs and passes
   // (the skin's inside faces away from the eye and is culled).
@@ -187,9 +191,9 @@ TEST(OcclusionCulling, ABrainPushedOutThroughTheSkinIsDrawn) {
   SceneTarget target(scene);
   const glm::vec3 direction(0.15f, -1.0f, 0.35f);
   const auto& positions = scene.objects[brain].mesh.positions;
-  const glm::vec3 bulge = *std::max_element(positions.begin(), positions.end(), [&](glm::vec3 a, glm::vec3 b) {
-    return glm::dot(a, direction) < glm::dot(b, direction);
-  });
+  const glm::vec3 bulge = *std::max_element(
+      positions.begin(), positions.end(),
+      [&](glm::vec3 a, glm::vec3 b) { return glm::dot(a, direction) < glm::dot(b, direction); });
   const ObjectDent out[] = {{brain, {bulge, -25.0f, 8.0f}}};
   const Frame frame = target.draw_checked(outside(scene, direction), out);
   EXPECT_EQ(frame.result.occlusion_tested, 1);

@@ -7,8 +7,8 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
-#include <glm/vec3.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/vec3.hpp>
 #include <map>
 #include <optional>
 #include <utility>
@@ -33,15 +33,16 @@ void expect_closed(const OcclusionProxy& proxy) {
     for (std::size_t k = 0; k < 3; ++k) ++edges[{proxy.indices[t + k], proxy.indices[t + (k + 1) % 3]}];
   }
   std::size_t unpaired = 0;
-  for (const auto& [edge, count] : edges) unpaired += count != 1 || !edges.contains({edge.second, edge.first});
+  for (const auto& [edge, count] : edges)
+    unpaired += count != 1 || !edges.contains({edge.second, edge.first});
   EXPECT_EQ(unpaired, 0u);
 }
 
 // Padded by `pad`: every face turns outward, has every proxy vertex behind it (convex), and lies at
 // least `clearance` beyond the farthest point of the object in its direction, so that it holds every
-// point within `clearance` of the object: for a convex polytope, the face planes decide. Slivers (the triangulation
-// of collinear hull points) are skipped: their planes are lost in the rounding of their corners, and
-// the faces checked must carry nearly all of the area.
+// point within `clearance` of the object: for a convex polytope, the face planes decide. Slivers (the
+// triangulation of collinear hull points) are skipped: their planes are lost in the rounding of their
+// corners, and the faces checked must carry nearly all of the area.
 void expect_contains_padded(const OcclusionProxy& proxy, std::span<const glm::vec3> object, float pad,
                             float clearance) {
   constexpr double min_altitude_mm = 0.1, tolerance_mm = 0.02;
@@ -71,21 +72,21 @@ void expect_contains_padded(const OcclusionProxy& proxy, std::span<const glm::ve
   EXPECT_GT(checked_area, 0.99 * area);
   EXPECT_EQ(inward, 0u);
   EXPECT_EQ(nonconvex, 0u);
-  EXPECT_EQ(too_close, 0u) << "pad " << pad << ": a face stands only " << worst_clearance << " mm off the object, not "
-                           << clearance;
+  EXPECT_EQ(too_close, 0u) << "pad " << pad << ": a face stands only " << worst_clearance
+                           << " mm off the object, not " << clearance;
 }
 
 constexpr float margin = 0.5f;
 
 TEST(OcclusionProxy, TheBrainsProxyContainsEveryPointWithinTheMarginAndThePad) {
   // A smaller brain than Table I's, as the check is faces x vertices; the same folds and fissure.
-  const glm::mat4 transform = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(10.0f, -20.0f, 30.0f)), 0.4f,
-                                          glm::vec3(0.3f, 1.0f, 0.2f));
+  const glm::mat4 transform = glm::rotate(glm::translate(glm::mat4(1.0f), glm::vec3(10.0f, -20.0f, 30.0f)),
+                                          0.4f, glm::vec3(0.3f, 1.0f, 0.2f));
   const std::vector<glm::vec3> brain = transformed(make_brain_phantom(12000), transform);
   const std::optional<OcclusionProxy> proxy = make_occlusion_proxy(brain, margin);
   ASSERT_TRUE(proxy);
-  std::printf("brain of %zu vertices: proxy of %zu vertices, %zu triangles\n", brain.size(), proxy->corners.size(),
-              proxy->indices.size() / 3);
+  std::printf("brain of %zu vertices: proxy of %zu vertices, %zu triangles\n", brain.size(),
+              proxy->corners.size(), proxy->indices.size() / 3);
   EXPECT_LT(proxy->indices.size() / 3, 3000u) << "the proxy's size should not grow with the mesh's";
   expect_closed(*proxy);
   for (float pad : {0.0f, 4.0f, 25.0f}) expect_contains_padded(*proxy, brain, pad, margin + pad);
@@ -100,7 +101,8 @@ TEST(OcclusionProxy, OnASphereItStandsWithinAFewPercentOfTheRadius) {
   for (std::size_t i = 0; i < proxy->corners.size(); ++i) {
     farthest = std::max(farthest, glm::length(proxy->vertex(i, pad)));
   }
-  std::printf("sphere of radius 30 mm, margin %.1f, pad %.1f: proxy reaches %.3f mm\n", margin, pad, farthest);
+  std::printf("sphere of radius 30 mm, margin %.1f, pad %.1f: proxy reaches %.3f mm\n", margin, pad,
+              farthest);
   EXPECT_LE(farthest, 1.02f * (30.0f + margin) + std::sqrt(3.0f) * pad);
   expect_contains_padded(*proxy, sphere, pad, margin + pad);
 }

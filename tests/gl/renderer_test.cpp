@@ -13,8 +13,8 @@
 
 #include "gl_test_context.hpp"
 #include "palpate/core/shapes.hpp"
-#include "palpate/gl/framebuffer.hpp"
 #include "palpate/gl/deform_glsl.hpp"
+#include "palpate/gl/framebuffer.hpp"
 #include "palpate/gl/shader_program.hpp"
 
 namespace palpate::gl {
@@ -37,14 +37,16 @@ struct Camera {
 };
 
 Camera looking_at(glm::vec3 eye, glm::vec3 target) {
-  return {glm::lookAt(eye, target, glm::vec3(0, 0, 1)), glm::perspective(glm::radians(40.0f), 1.0f, 5.0f, 1000.0f)};
+  return {glm::lookAt(eye, target, glm::vec3(0, 0, 1)),
+          glm::perspective(glm::radians(40.0f), 1.0f, 5.0f, 1000.0f)};
 }
 
 // Renders `scene` with `dents` into a fresh target and returns its pixels (RGBA, float or 8-bit).
 template <class Pixel>
 std::vector<Pixel> render(const Scene& scene, const Camera& camera, std::span<const ObjectDent> dents,
                           DrawOptions options) {
-  const Framebuffer target({size, size, std::is_same_v<Pixel, float> ? ColorFormat::rgba32f : ColorFormat::rgba8});
+  const Framebuffer target(
+      {size, size, std::is_same_v<Pixel, float> ? ColorFormat::rgba32f : ColorFormat::rgba8});
   target.bind();
   glClearColor(0, 0, 0, 0);
   glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -126,16 +128,18 @@ void expect_true_normals(const Mesh& mesh, const Dent& dent, const Camera& camer
   EXPECT_LE(overall.p99, 5.0f);
   EXPECT_LE(dent_only.mean, 2.0f);
   EXPECT_LE(dent_only.p99, 5.0f);
-  std::printf("normal error, all %zu px: mean %.3f p99 %.3f max %.2f deg; in the dent %zu px: mean %.3f p99 %.3f "
-              "max %.2f deg (the dent leans up to %.1f deg)\n",
-              overall.pixels, overall.mean, overall.p99, overall.max, dent_only.pixels, dent_only.mean, dent_only.p99,
-              dent_only.max, deepest_lean);
+  std::printf(
+      "normal error, all %zu px: mean %.3f p99 %.3f max %.2f deg; in the dent %zu px: mean %.3f p99 %.3f "
+      "max %.2f deg (the dent leans up to %.1f deg)\n",
+      overall.pixels, overall.mean, overall.p99, overall.max, dent_only.pixels, dent_only.mean, dent_only.p99,
+      dent_only.max, deepest_lean);
 }
 
 TEST(RendererNormals, FinePlaneMatchesTheTrueNormals) {
   test::gl_context();
   const Mesh plane = make_grid(80.0f, 240);  // 0.33 mm cells
-  expect_true_normals(plane, Dent{{3.0f, 2.0f, 0.0f}, 3.0f, 5.0f}, looking_at({0.0f, -45.0f, 50.0f}, {0, 0, 0}));
+  expect_true_normals(plane, Dent{{3.0f, 2.0f, 0.0f}, 3.0f, 5.0f},
+                      looking_at({0.0f, -45.0f, 50.0f}, {0, 0, 0}));
 }
 
 TEST(RendererNormals, FineSphereMatchesTheTrueNormals) {
@@ -167,7 +171,8 @@ TEST_F(Bumpy, ZeroDepthGivesTheUndeformedImageBitForBit) {
   for (bool skip_unreached : {true, false}) {
     DrawOptions options;
     options.skip_unreached = skip_unreached;
-    EXPECT_EQ(render<std::uint8_t>(scene, camera, flat, options), undeformed) << "skip_unreached " << skip_unreached;
+    EXPECT_EQ(render<std::uint8_t>(scene, camera, flat, options), undeformed)
+        << "skip_unreached " << skip_unreached;
   }
   const ObjectDent dented[] = {{0, {contact, 4.0f, 6.0f}}};
   EXPECT_NE(render<std::uint8_t>(scene, camera, dented, {}), undeformed);
@@ -192,13 +197,15 @@ TEST_F(Bumpy, CpuNaiveAndGpuDrawTheSameDentOnASmoothSphere) {
     std::size_t count = 0;
     for (std::size_t i = 0; i < a.size(); i += 4) {
       int largest = 0;
-      for (std::size_t c = 0; c < 3; ++c) largest = std::max(largest, std::abs(int(a[i + c]) - int(b[i + c])));
+      for (std::size_t c = 0; c < 3; ++c)
+        largest = std::max(largest, std::abs(int(a[i + c]) - int(b[i + c])));
       count += largest > 4;
     }
     return count;
   };
   const std::size_t dent_pixels = differing(gpu, flat), disagreeing = differing(gpu, cpu);
-  std::printf("the dent changes %zu pixels; the GPU and CPU-naive paths differ on %zu\n", dent_pixels, disagreeing);
+  std::printf("the dent changes %zu pixels; the GPU and CPU-naive paths differ on %zu\n", dent_pixels,
+              disagreeing);
   EXPECT_GT(dent_pixels, 1000u);
   EXPECT_LT(disagreeing, dent_pixels / 10);
 }
@@ -234,18 +241,23 @@ TEST(RendererDents, AContactDentsOnlyTheObjectItTouchesWithThatObjectsSigma) {
     return target.read_rgba8();
   };
   DrawResult result;
-  const auto by_contact = frame([&] { result = renderer.draw(camera.view, camera.projection, {&contact, 1}, options); });
+  const auto by_contact = frame([&] {
+    result = renderer.draw(camera.view, camera.projection, {&contact, 1}, options);
+  });
   EXPECT_EQ(result.deformed_objects, 1);
   EXPECT_EQ(result.dropped_dents, 0);
   const ObjectDent explicit_dent[] = {{1, {contact.point, 4.0f, 8.0f}}};
-  EXPECT_EQ(by_contact, frame([&] { renderer.draw(camera.view, camera.projection, explicit_dent, options); }));
-  const auto undeformed = frame([&] { renderer.draw(camera.view, camera.projection, std::span<const ObjectDent>(), options); });
+  EXPECT_EQ(by_contact,
+            frame([&] { renderer.draw(camera.view, camera.projection, explicit_dent, options); }));
+  const auto undeformed =
+      frame([&] { renderer.draw(camera.view, camera.projection, std::span<const ObjectDent>(), options); });
 
   // The left object (left half of the image) is untouched, the right one dented.
   std::size_t left_changed = 0, right_changed = 0;
   for (std::size_t i = 0; i < by_contact.size(); i += 4) {
     const bool left = (i / 4) % size < size / 2;
-    const bool changed = !std::equal(by_contact.begin() + long(i), by_contact.begin() + long(i) + 4, undeformed.begin() + long(i));
+    const bool changed = !std::equal(by_contact.begin() + long(i), by_contact.begin() + long(i) + 4,
+                                     undeformed.begin() + long(i));
     (left ? left_changed : right_changed) += changed;
   }
   EXPECT_EQ(left_changed, 0u);
@@ -288,11 +300,26 @@ std::vector<GLint64> gl_state_snapshot() {
     glGetInteger64i_v(name, index, &value);
     s.push_back(value);
   };
-  for (GLenum name : {GL_CURRENT_PROGRAM, GL_VERTEX_ARRAY_BINDING, GL_ARRAY_BUFFER_BINDING, GL_ELEMENT_ARRAY_BUFFER_BINDING,
-                      GL_UNIFORM_BUFFER_BINDING, GL_DRAW_FRAMEBUFFER_BINDING, GL_READ_FRAMEBUFFER_BINDING,
-                      GL_ACTIVE_TEXTURE, GL_TEXTURE_BINDING_2D, GL_DEPTH_FUNC, GL_DEPTH_WRITEMASK, GL_CULL_FACE_MODE,
-                      GL_FRONT_FACE, GL_BLEND_SRC_RGB, GL_BLEND_DST_RGB, GL_BLEND_EQUATION_RGB, GL_PROGRAM_PIPELINE_BINDING,
-                      GL_TRANSFORM_FEEDBACK_BINDING, GL_RENDERBUFFER_BINDING, GL_PIXEL_PACK_BUFFER_BINDING}) {
+  for (GLenum name : {GL_CURRENT_PROGRAM,
+                      GL_VERTEX_ARRAY_BINDING,
+                      GL_ARRAY_BUFFER_BINDING,
+                      GL_ELEMENT_ARRAY_BUFFER_BINDING,
+                      GL_UNIFORM_BUFFER_BINDING,
+                      GL_DRAW_FRAMEBUFFER_BINDING,
+                      GL_READ_FRAMEBUFFER_BINDING,
+                      GL_ACTIVE_TEXTURE,
+                      GL_TEXTURE_BINDING_2D,
+                      GL_DEPTH_FUNC,
+                      GL_DEPTH_WRITEMASK,
+                      GL_CULL_FACE_MODE,
+                      GL_FRONT_FACE,
+                      GL_BLEND_SRC_RGB,
+                      GL_BLEND_DST_RGB,
+                      GL_BLEND_EQUATION_RGB,
+                      GL_PROGRAM_PIPELINE_BINDING,
+                      GL_TRANSFORM_FEEDBACK_BINDING,
+                      GL_RENDERBUFFER_BINDING,
+                      GL_PIXEL_PACK_BUFFER_BINDING}) {
     integer(name);
   }
   integer(GL_VIEWPORT, 4);

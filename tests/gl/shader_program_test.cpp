@@ -10,9 +10,11 @@
 namespace palpate::gl {
 namespace {
 
-constexpr const char* good_vertex = "#version 450 core\nlayout(location = 0) in vec3 p;\nout vec3 v;\n"
-                                    "void main() { v = p; gl_Position = vec4(p, 1.0); }\n";
-constexpr const char* good_fragment = "#version 450 core\nin vec3 v;\nout vec4 c;\nvoid main() { c = vec4(v, 1.0); }\n";
+constexpr const char* good_vertex =
+    "#version 450 core\nlayout(location = 0) in vec3 p;\nout vec3 v;\n"
+    "void main() { v = p; gl_Position = vec4(p, 1.0); }\n";
+constexpr const char* good_fragment =
+    "#version 450 core\nin vec3 v;\nout vec4 c;\nvoid main() { c = vec4(v, 1.0); }\n";
 
 TEST(ShaderProgram, LinksValidSources) {
   test::gl_context();
@@ -37,8 +39,9 @@ TEST(ShaderProgram, CompileErrorNamesTheProgramAndCarriesTheDriverLog) {
 TEST(ShaderProgram, LinkErrorNamesTheProgramAndCarriesTheDriverLog) {
   test::gl_context();
   // The fragment stage reads an input that no vertex output feeds.
-  const char* unmatched = "#version 450 core\nin vec3 never_written;\nout vec4 c;\n"
-                          "void main() { c = vec4(never_written, 1.0); }\n";
+  const char* unmatched =
+      "#version 450 core\nin vec3 never_written;\nout vec4 c;\n"
+      "void main() { c = vec4(never_written, 1.0); }\n";
   try {
     ShaderProgram program("mismatched stages", good_vertex, unmatched);
     FAIL() << "mismatched stages linked";

@@ -1,19 +1,19 @@
 // One haptic tick end to end: the device-to-scene transform, the touched object's material, the
 // device's force limit, and non-finite device input (zero force, a flag, the loop goes on).
+#include "palpate/haptics/haptic_pipeline.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <limits>
-#include <vector>
-
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
+#include <vector>
 
 #include "palpate/core/bvh.hpp"
 #include "palpate/core/error.hpp"
 #include "palpate/core/shapes.hpp"
 #include "palpate/haptics/haptic_loop.hpp"
-#include "palpate/haptics/haptic_pipeline.hpp"
 #include "palpate/haptics/scripted_device.hpp"
 
 namespace palpate {
@@ -25,8 +25,10 @@ Scene two_cubes() {
   Material soft, stiff;
   soft.stiffness_n_per_mm = 0.2f;
   stiff.stiffness_n_per_mm = 0.8f;
-  scene.objects.push_back({"soft", make_box(glm::vec3(20.0f)), glm::translate(glm::mat4(1.0f), {-30, 0, 0}), soft, {}});
-  scene.objects.push_back({"stiff", make_box(glm::vec3(20.0f)), glm::translate(glm::mat4(1.0f), {30, 0, 0}), stiff, {}});
+  scene.objects.push_back(
+      {"soft", make_box(glm::vec3(20.0f)), glm::translate(glm::mat4(1.0f), {-30, 0, 0}), soft, {}});
+  scene.objects.push_back(
+      {"stiff", make_box(glm::vec3(20.0f)), glm::translate(glm::mat4(1.0f), {30, 0, 0}), stiff, {}});
   return scene;
 }
 
@@ -47,7 +49,8 @@ class NanDevice final : public Device {
   explicit NanDevice(SampledPath path) : inner_(std::move(path)) {}
   DeviceState read(double time_s) noexcept override {
     DeviceState state = inner_.read(time_s);
-    if (time_s >= nan_from_s && time_s < nan_until_s) state.position_mm.y = std::numeric_limits<float>::quiet_NaN();
+    if (time_s >= nan_from_s && time_s < nan_until_s)
+      state.position_mm.y = std::numeric_limits<float>::quiet_NaN();
     if (time_s >= inf_velocity_at_s && time_s < inf_velocity_at_s + 0.0005) {
       state.velocity_mm_per_s.x = std::numeric_limits<float>::infinity();
     }
@@ -147,7 +150,8 @@ TEST(HapticPipelineTest, NonFiniteDeviceInputGivesZeroForceAndAFlagWhileTheLoopG
     const TickResult result = pipeline.tick(std::uint64_t(k), time);
     const bool bad = (time >= 0.2 && time < 0.25) || (time >= 0.3 && time < 0.3005);
     ASSERT_EQ(result.invalid_input, bad) << "tick " << k;
-    ASSERT_TRUE(std::isfinite(result.force_n.x) && std::isfinite(result.force_n.y) && std::isfinite(result.force_n.z));
+    ASSERT_TRUE(std::isfinite(result.force_n.x) && std::isfinite(result.force_n.y) &&
+                std::isfinite(result.force_n.z));
     if (bad) {
       ++invalid;
       EXPECT_EQ(result.force_n, glm::vec3(0.0f)) << "tick " << k;

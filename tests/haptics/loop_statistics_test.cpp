@@ -1,5 +1,7 @@
 // The loop's schedule and statistics on a fake clock: every figure is worked out by hand from the
 // scripted tick costs and wake-up delays.
+#include "palpate/haptics/loop_statistics.hpp"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -12,7 +14,6 @@
 #include "palpate/core/error.hpp"
 #include "palpate/core/shapes.hpp"
 #include "palpate/haptics/haptic_loop.hpp"
-#include "palpate/haptics/loop_statistics.hpp"
 
 namespace palpate {
 namespace {
@@ -116,7 +117,8 @@ TEST(LoopStatisticsTest, ScheduleAndFiguresOnAFakeClock) {
   // Starts (ms): 1, 2, 3 (ends 5.5: missed), 5.5 (at once, on grid point 5), 6, 7.
   const std::vector<double> expected_times{0.001, 0.002, 0.003, 0.0055, 0.006, 0.007};
   ASSERT_EQ(device.times_.size(), expected_times.size());
-  for (std::size_t i = 0; i < expected_times.size(); ++i) EXPECT_NEAR(device.times_[i], expected_times[i], 1e-12) << i;
+  for (std::size_t i = 0; i < expected_times.size(); ++i)
+    EXPECT_NEAR(device.times_[i], expected_times[i], 1e-12) << i;
 
   const LoopStatistics stats = loop.statistics();
   EXPECT_EQ(stats.ticks, 6u);

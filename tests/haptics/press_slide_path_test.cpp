@@ -1,17 +1,17 @@
 // PressSlidePath against its analytic definition: approach along the normal, press, slide on the
 // plane or sphere with the depth p + a sin(2 pi s / L), pull out; velocities against finite
 // differences of the positions.
+#include "palpate/haptics/press_slide_path.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
-#include <numbers>
-
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <numbers>
 
 #include "palpate/core/error.hpp"
 #include "palpate/core/shapes.hpp"
-#include "palpate/haptics/press_slide_path.hpp"
 #include "palpate/haptics/scripted_device.hpp"
 
 namespace palpate {
@@ -28,7 +28,7 @@ void expect_near(glm::vec3 got, glm::vec3 want, float tolerance, const char* wha
 PressSlide flat_spec() {
   PressSlide spec;
   spec.surface_point_mm = {1.0f, 2.0f, 3.0f};
-  spec.normal = {0.0f, 0.0f, 2.0f};          // normalised on use
+  spec.normal = {0.0f, 0.0f, 2.0f};           // normalised on use
   spec.slide_direction = {1.0f, 0.0f, 0.5f};  // projected onto the plane: +x
   return spec;
 }
@@ -60,9 +60,10 @@ TEST(PressSlidePathTest, FlatPathFollowsItsAnalyticPositions) {
   EXPECT_NEAR(path.depth_at(13.0f), 4.0f, 1e-5f);
   EXPECT_NEAR(path.depth_at(39.0f), 1.0f, 1e-5f);
   const glm::vec3 end_point = p + 52.0f * t;
-  expect_near(path.sample(path.slide_end_s() + 0.2).position_mm, end_point + (-2.5f + 25.0f * 0.2f) * n, 1e-3f,
-              "pull out at 25 mm/s");
-  expect_near(path.sample(path.duration_s() + 5.0).position_mm, end_point + 20.0f * n, 1e-3f, "rests 20 mm above");
+  expect_near(path.sample(path.slide_end_s() + 0.2).position_mm, end_point + (-2.5f + 25.0f * 0.2f) * n,
+              1e-3f, "pull out at 25 mm/s");
+  expect_near(path.sample(path.duration_s() + 5.0).position_mm, end_point + 20.0f * n, 1e-3f,
+              "rests 20 mm above");
   expect_near(path.sample(path.duration_s() + 5.0).velocity_mm_per_s, glm::vec3(0.0f), 0.0f, "at rest");
   expect_near(path.sample(-1.0).position_mm, p + 20.0f * n, 1e-5f, "clamped before the start");
 }
@@ -153,7 +154,8 @@ TEST(PressSlidePathTest, AimsAtAVertexOfAnObjectInWorldCoordinates) {
   EXPECT_EQ(aimed.press_depth_mm, PressSlide{}.press_depth_mm) << "other fields kept";
   // The aimed path presses 2.5 mm into the ball along the radius.
   const PressSlidePath path(aimed);
-  EXPECT_NEAR(glm::length(path.sample(path.approach_end_s()).position_mm - glm::vec3(100.0f, 0.0f, 0.0f)), 27.5f, 0.05f);
+  EXPECT_NEAR(glm::length(path.sample(path.approach_end_s()).position_mm - glm::vec3(100.0f, 0.0f, 0.0f)),
+              27.5f, 0.05f);
   EXPECT_THROW(aim_press_slide(ball, 5000, {0.0f, 0.0f, 1.0f}), Error);
 }
 
@@ -163,7 +165,8 @@ TEST(ScriptedDeviceTest, FollowsItsPathRepeatsAndKeepsTheLastForce) {
   ScriptedDevice repeating(path, true);
   const double t = 0.7;
   expect_near(once.read(t).position_mm, path.sample(t).position_mm, 0.0f, "follows the path");
-  expect_near(repeating.read(path.duration_s() + t).position_mm, path.sample(t).position_mm, 1e-3f, "starts over");
+  expect_near(repeating.read(path.duration_s() + t).position_mm, path.sample(t).position_mm, 1e-3f,
+              "starts over");
   expect_near(once.read(path.duration_s() + t).position_mm, path.sample(path.duration_s()).position_mm, 0.0f,
               "holds the end");
   EXPECT_EQ(once.writes(), 0u);

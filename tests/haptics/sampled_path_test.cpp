@@ -1,4 +1,6 @@
 // SampledPath interpolation and the CSV reader with its errors (file and line named).
+#include "palpate/haptics/sampled_path.hpp"
+
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -6,7 +8,6 @@
 #include <string>
 
 #include "palpate/core/error.hpp"
-#include "palpate/haptics/sampled_path.hpp"
 #include "palpate/haptics/scripted_device.hpp"
 #include "test_paths.hpp"
 
@@ -77,7 +78,8 @@ TEST(SampledPathCsvTest, ReadsHeaderCommentsBlankLinesAndCrlf) {
 }
 
 TEST(SampledPathCsvTest, ErrorsNameTheLineAndWhatIsWrong) {
-  EXPECT_EQ(csv_error("short", "t,x,y,z\n0,0,0,0\n1,2,3\n"), "3: expected 4 comma-separated values t,x,y,z, got 3");
+  EXPECT_EQ(csv_error("short", "t,x,y,z\n0,0,0,0\n1,2,3\n"),
+            "3: expected 4 comma-separated values t,x,y,z, got 3");
   EXPECT_EQ(csv_error("long", "0,0,0,0,9\n"), "1: expected 4 comma-separated values t,x,y,z, got 5");
   EXPECT_EQ(csv_error("word", "0,0,0,0\n\n1,abc,0,0\n"), "3: x: 'abc' is not a number");
   EXPECT_EQ(csv_error("empty_field", "0,0,,0\n"), "1: y: '' is not a number");

@@ -7,8 +7,12 @@
 
 namespace palpate::test {
 
-std::filesystem::path source_dir() { return PALPATE_SOURCE_DIR; }
-std::filesystem::path binary_dir() { return PALPATE_BINARY_DIR; }
+std::filesystem::path source_dir() {
+  return PALPATE_SOURCE_DIR;
+}
+std::filesystem::path binary_dir() {
+  return PALPATE_BINARY_DIR;
+}
 
 std::optional<std::filesystem::path> shared_data_dir() {
   if (const char* env = std::getenv("PALPATE_SHARED_DATA"); env && *env) {

@@ -15,7 +15,7 @@ std::filesystem::path scratch_dir(const std::string& name);
 }  // namespace palpate::test
 
 // Skips the current test with a message when ../shared/data is absent.
-#define PALPATE_REQUIRE_SHARED_DATA(var)                                              \
+#define PALPATE_REQUIRE_SHARED_DATA(var)                                               \
   const auto var##_opt = ::palpate::test::shared_data_dir();                           \
   if (!var##_opt) GTEST_SKIP() << "../shared/data is absent: skipping real-file test"; \
   const std::filesystem::path var = *var##_opt

@@ -7,10 +7,9 @@
 // G(d) = p * exp(-d^2 / 2 sigma^2), d = |V - c| the distance of the undeformed vertex to the contact
 // point c, p the penetration; at c the surface reaches the HIP. Dents add up.
 // Beyond `dent_cutoff_sigmas` sigma a dent is skipped (G < 3.4e-4 p there), here and in the shaders.
-#include <span>
-
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
+#include <span>
 
 #include "palpate/core/contact.hpp"
 #include "palpate/core/mesh.hpp"
@@ -19,9 +18,9 @@ namespace palpate {
 
 // One contact as the renderer sees it: where, how deep, and the sigma of the object it deforms.
 struct Dent {
-  glm::vec3 center{0.0f};   // contact point c (the SCP), world mm
-  float depth_mm = 0.0f;    // p
-  float sigma_mm = 1.0f;    // spread of the touched object's material
+  glm::vec3 center{0.0f};  // contact point c (the SCP), world mm
+  float depth_mm = 0.0f;   // p
+  float sigma_mm = 1.0f;   // spread of the touched object's material
 };
 
 inline constexpr int max_dents = 8;

@@ -9,9 +9,9 @@
 namespace palpate {
 
 struct Mesh {
-  std::vector<glm::vec3> positions;  // mm
-  std::vector<glm::vec3> normals;    // unit, one per position (outward)
-  std::vector<glm::vec3> colors;     // linear RGB in [0,1], one per position, or empty
+  std::vector<glm::vec3> positions;    // mm
+  std::vector<glm::vec3> normals;      // unit, one per position (outward)
+  std::vector<glm::vec3> colors;       // linear RGB in [0,1], one per position, or empty
   std::vector<std::uint32_t> indices;  // three per triangle, counter-clockwise seen from outside
 
   std::size_t vertex_count() const noexcept { return positions.size(); }

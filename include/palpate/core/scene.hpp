@@ -12,8 +12,8 @@ namespace palpate {
 
 struct SceneObject {
   std::string name;
-  Mesh mesh;                    // object frame, mm
-  glm::mat4 transform{1.0f};    // rigid: object frame to world (rotation + translation)
+  Mesh mesh;                  // object frame, mm
+  glm::mat4 transform{1.0f};  // rigid: object frame to world (rotation + translation)
   Material material;
   std::filesystem::path source;  // where the mesh came from, if from a file
 };

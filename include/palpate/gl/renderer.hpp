@@ -21,11 +21,10 @@
 // Needs a current OpenGL 4.5 core context for all of its life (construction compiles its programs and
 // throws palpate::Error with the driver's log if one fails). Not thread-safe: use it on the thread of
 // its context.
-#include <memory>
-#include <span>
-
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
+#include <memory>
+#include <span>
 
 #include "palpate/core/contact.hpp"
 #include "palpate/core/deform.hpp"
@@ -48,9 +47,9 @@ enum class Shading {
 struct Lighting {
   glm::vec3 direction{-0.6f, 0.55f, 0.55f};  // toward the directional light: upper left, so dents shade
   glm::vec3 color{0.62f, 0.6f, 0.57f};
-  glm::vec3 spot_position{0.0f, 80.0f, 0.0f};  // mm: a head lamp above the eye,
+  glm::vec3 spot_position{0.0f, 80.0f, 0.0f};     // mm: a head lamp above the eye,
   glm::vec3 spot_direction{0.0f, -0.3f, -0.95f};  // along the beam: toward the middle of the view at 250 mm
-  float spot_inner_deg = 10.0f;  // full intensity inside, fading to zero at the outer angle
+  float spot_inner_deg = 10.0f;                   // full intensity inside, fading to zero at the outer angle
   float spot_outer_deg = 28.0f;
   glm::vec3 spot_color{0.4f, 0.39f, 0.36f};
   glm::vec3 ambient{0.12f, 0.12f, 0.13f};
@@ -89,10 +88,10 @@ struct ObjectDent {
 };
 
 struct DrawResult {
-  int dropped_dents = 0;      // beyond max_dents for one object, or naming no uploaded object
-  int deformed_objects = 0;   // objects that had at least one dent
-  int occlusion_tested = 0;   // objects drawn under an occlusion query of their proxy (maybe culled)
-  int occlusion_culled = 0;   // of those, the ones the query hid (counted with read_occlusion_results only)
+  int dropped_dents = 0;     // beyond max_dents for one object, or naming no uploaded object
+  int deformed_objects = 0;  // objects that had at least one dent
+  int occlusion_tested = 0;  // objects drawn under an occlusion query of their proxy (maybe culled)
+  int occlusion_culled = 0;  // of those, the ones the query hid (counted with read_occlusion_results only)
 };
 
 class Renderer {

@@ -21,7 +21,9 @@ class ShaderProgram {
   GLuint id() const noexcept { return program_; }
   const std::string& name() const noexcept { return name_; }
   // -1 where the program has no such active uniform.
-  GLint uniform(const char* uniform_name) const noexcept { return glGetUniformLocation(program_, uniform_name); }
+  GLint uniform(const char* uniform_name) const noexcept {
+    return glGetUniformLocation(program_, uniform_name);
+  }
 
  private:
   std::string name_;

@@ -8,7 +8,8 @@
 //     class OpenHapticsDevice final : public Device {  // hdInitDevice in the constructor (may throw)
 //       DeviceState read(double) noexcept override;   // hdBeginFrame; hdGetDoublev(HD_CURRENT_POSITION...)
 //       void write(glm::vec3 f) noexcept override;     // hdSetDoublev(HD_CURRENT_FORCE...); hdEndFrame
-//       DeviceLimits limits() const noexcept override;  // HD_NOMINAL_MAX_CONTINUOUS_FORCE, HD_NOMINAL_MAX_STIFFNESS
+//       DeviceLimits limits() const noexcept override;  // HD_NOMINAL_MAX_CONTINUOUS_FORCE,
+//       HD_NOMINAL_MAX_STIFFNESS
 //     };
 // and in CMakeLists.txt a `palpate_openhaptics` library guarded by `find_library(HD ...)` that links
 // palpate_haptics. The application hands the device to HapticLoop like any other; HapticLoop owns the

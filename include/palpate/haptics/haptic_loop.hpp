@@ -30,12 +30,12 @@
 namespace palpate {
 
 struct HapticLoopParams {
-  double rate_hz = 1000.0;             // target tick rate, Hz, in [1, 100000]
-  DeviceTransform device_to_scene;     // device frame to scene (workspace scaling + rigid)
+  double rate_hz = 1000.0;          // target tick rate, Hz, in [1, 100000]
+  DeviceTransform device_to_scene;  // device frame to scene (workspace scaling + rigid)
   ProxyParams proxy;
-  bool realtime_priority = true;       // ask for SCHED_FIFO
-  int fifo_priority = 80;              // 1..99 when SCHED_FIFO is granted
-  double spin_us = 100.0;              // spin this long before each deadline (at most half a period)
+  bool realtime_priority = true;          // ask for SCHED_FIFO
+  int fifo_priority = 80;                 // 1..99 when SCHED_FIFO is granted
+  double spin_us = 100.0;                 // spin this long before each deadline (at most half a period)
   std::size_t statistics_window = 32768;  // ticks behind the percentiles
 };
 
@@ -88,7 +88,7 @@ class HapticLoop {
   Latest<Contact> contacts_;
 
   std::atomic<std::int64_t> origin_ns_{0};  // device time 0 of this run
-  std::int64_t period_start_ns_ = 0;  // grid point the next tick waits for
+  std::int64_t period_start_ns_ = 0;        // grid point the next tick waits for
   bool first_of_run_ = true;
   std::uint64_t next_tick_ = 0;
 

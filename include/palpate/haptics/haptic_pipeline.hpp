@@ -7,7 +7,6 @@
 // tick() never allocates, locks, logs or does I/O (beyond what the Device does), and never throws.
 // Non-finite device input commands zero force, keeps the proxy where it was and sets invalid_input.
 #include <cstdint>
-
 #include <glm/vec3.hpp>
 
 #include "palpate/core/bvh.hpp"
@@ -20,18 +19,18 @@
 namespace palpate {
 
 struct TickResult {
-  Contact contact;                // with tick and time filled in; object -1 when free or invalid
-  glm::vec3 force_n{0.0f};        // commanded force in the scene frame
-  bool clamped = false;           // the force hit the device's maximum
-  bool invalid_input = false;     // the device gave a non-finite position or velocity
+  Contact contact;             // with tick and time filled in; object -1 when free or invalid
+  glm::vec3 force_n{0.0f};     // commanded force in the scene frame
+  bool clamped = false;        // the force hit the device's maximum
+  bool invalid_input = false;  // the device gave a non-finite position or velocity
 };
 
 class HapticPipeline {
  public:
   // Borrows all three; they must outlive the pipeline and `bvh` must be built from `scene`.
   // Reads device.limits() once. Throws palpate::Error for an invalid transform.
-  HapticPipeline(Device& device, const Scene& scene, const Bvh& bvh, const DeviceTransform& device_to_scene = {},
-                 const ProxyParams& proxy = {});
+  HapticPipeline(Device& device, const Scene& scene, const Bvh& bvh,
+                 const DeviceTransform& device_to_scene = {}, const ProxyParams& proxy = {});
 
   TickResult tick(std::uint64_t tick, double time_s) noexcept;
 

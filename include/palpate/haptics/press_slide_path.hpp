@@ -14,19 +14,19 @@
 namespace palpate {
 
 struct PressSlide {
-  glm::vec3 surface_point_mm{0.0f};            // where the approach lands, device frame
-  glm::vec3 normal{0.0f, 0.0f, 1.0f};          // outward surface normal there (normalised on use)
+  glm::vec3 surface_point_mm{0.0f};             // where the approach lands, device frame
+  glm::vec3 normal{0.0f, 0.0f, 1.0f};           // outward surface normal there (normalised on use)
   glm::vec3 slide_direction{1.0f, 0.0f, 0.0f};  // projected onto the tangent plane; not along the normal
-  float curvature_radius_mm = 0.0f;            // 0: flat; > 0: convex sphere of this radius
-  float start_height_mm = 20.0f;               // start (and end) this far outside the surface
+  float curvature_radius_mm = 0.0f;             // 0: flat; > 0: convex sphere of this radius
+  float start_height_mm = 20.0f;                // start (and end) this far outside the surface
   float approach_speed_mm_per_s = 25.0f;
-  float press_depth_mm = 2.5f;                 // depth when the slide begins (negative: hover above)
-  float slide_length_mm = 52.0f;               // arc length on the surface
-  float slide_speed_mm_per_s = 25.0f;          // along the surface
-  float depth_amplitude_mm = 1.5f;             // depth = press + amplitude * sin(2 pi cycles s / length)
+  float press_depth_mm = 2.5f;         // depth when the slide begins (negative: hover above)
+  float slide_length_mm = 52.0f;       // arc length on the surface
+  float slide_speed_mm_per_s = 25.0f;  // along the surface
+  float depth_amplitude_mm = 1.5f;     // depth = press + amplitude * sin(2 pi cycles s / length)
   float depth_cycles = 1.0f;
   float retract_speed_mm_per_s = 25.0f;
-  float rest_s = 0.0f;                         // hold at the end, start_height_mm outside
+  float rest_s = 0.0f;  // hold at the end, start_height_mm outside
 };
 
 class PressSlidePath {
@@ -63,7 +63,7 @@ class PressSlidePath {
 // direction at the scale of a slide, not one bump's), the curvature that of the sphere through the
 // vertex about the object's bounds centre. The other fields are kept. Allocates when the mesh has
 // no normals; throws palpate::Error for a vertex out of range.
-PressSlide aim_press_slide(const SceneObject& object, std::size_t vertex, glm::vec3 slide_direction, PressSlide spec = {},
-                           float smoothing_radius_mm = 8.0f);
+PressSlide aim_press_slide(const SceneObject& object, std::size_t vertex, glm::vec3 slide_direction,
+                           PressSlide spec = {}, float smoothing_radius_mm = 8.0f);
 
 }  // namespace palpate

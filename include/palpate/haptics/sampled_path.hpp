@@ -3,9 +3,8 @@
 // `t,x,y,z` (seconds, device-frame mm) or built in code. Construction allocates and may throw;
 // sample() is noexcept and allocation-free (a binary search), so it can run in the haptic tick.
 #include <filesystem>
-#include <vector>
-
 #include <glm/vec3.hpp>
+#include <vector>
 
 #include "palpate/haptics/device.hpp"
 

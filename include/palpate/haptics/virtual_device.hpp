@@ -32,7 +32,7 @@ class VirtualDevice final : public Device {
   Latest<glm::vec3> force_;
   float lag_s_;
   DeviceLimits limits_;
-  glm::vec3 tip_;          // haptic thread only
+  glm::vec3 tip_;  // haptic thread only
   double last_time_s_ = -1.0;
 };
 
