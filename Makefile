@@ -2,8 +2,10 @@
 PRESET ?= release
 BUILD  := build/$(PRESET)
 JOBS   ?= $(shell nproc)
+# ON turns compiler warnings into errors (CI sets it)
+WERROR ?= OFF
 
-.PHONY: all deps configure build demo test test-asan test-tsan bench clean
+.PHONY: all deps configure build demo test test-asan test-tsan bench format format-check clean
 
 all: build
 
@@ -11,12 +13,14 @@ deps:
 	@./scripts/install-deps.sh
 
 configure: deps
-	@cmake --preset $(PRESET) >/dev/null
+	@cmake --preset $(PRESET) -DPALPATE_WERROR=$(WERROR) >/dev/null
 
 build: configure
 	@cmake --build --preset $(PRESET) -j $(JOBS)
 
-demo: build
+# Only the tool: no test or benchmark is compiled first.
+demo: configure
+	@cmake --build --preset $(PRESET) -j $(JOBS) --target palpate_cli
 	$(BUILD)/apps/palpate demo
 
 test: build
@@ -31,6 +35,12 @@ test-tsan:
 bench: build
 	$(BUILD)/apps/palpate bench haptics --quick
 	$(BUILD)/apps/palpate bench render --quick
+
+format:
+	git ls-files '*.cpp' '*.hpp' '*.h' | xargs clang-format -i
+
+format-check: deps
+	@./scripts/check-format.sh
 
 clean:
 	rm -rf build
