@@ -48,15 +48,15 @@ int main(int argc, char** argv) {
   if (headless) {
     context.emplace();
   } else {
-    window.emplace(palpate::gl::WindowOptions{width, height, "existing app"});
+    window.emplace(palpate::gl::WindowParams{width, height, "existing app"});
   }
 
   const palpate::Mesh mesh = palpate::make_sphere(50.0f, 40000);
   GLuint vertex_array = 0, buffers[3] = {};
   glCreateVertexArrays(1, &vertex_array);
   glCreateBuffers(3, buffers);
-  glNamedBufferStorage(buffers[0], GLsizeiptr(mesh.positions.size() * sizeof(glm::vec3)),
-                       mesh.positions.data(), 0);
+  glNamedBufferStorage(buffers[0], GLsizeiptr(mesh.positions_mm.size() * sizeof(glm::vec3)),
+                       mesh.positions_mm.data(), 0);
   glNamedBufferStorage(buffers[1], GLsizeiptr(mesh.normals.size() * sizeof(glm::vec3)), mesh.normals.data(),
                        0);
   glNamedBufferStorage(buffers[2], GLsizeiptr(mesh.indices.size() * sizeof(std::uint32_t)),

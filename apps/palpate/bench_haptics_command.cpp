@@ -13,10 +13,7 @@
 #include <vector>
 
 #include "commands.hpp"
-#include "cpu_burner.hpp"
 #include "format.hpp"
-#include "haptic_scenarios.hpp"
-#include "mesh_reference.hpp"
 #include "palpate/core/bvh.hpp"
 #include "palpate/core/error.hpp"
 #include "palpate/core/scene_file.hpp"
@@ -24,6 +21,8 @@
 #include "palpate/haptics/haptic_loop.hpp"
 #include "palpate/haptics/loop_statistics.hpp"
 #include "palpate/haptics/scripted_device.hpp"
+#include "palpate/testing/cpu_burners.hpp"
+#include "palpate/testing/haptic_scenarios.hpp"
 
 namespace palpate::cli {
 namespace {
@@ -42,7 +41,7 @@ struct TickRow {
   std::string state;  // "free" or "contact"
   std::size_t ticks = 0;
   Percentiles tick_us;
-  std::optional<PathChecks> checks;
+  std::optional<testing::ScenarioCounts> checks;
 };
 
 struct BuildRow {
@@ -87,7 +86,7 @@ Prepared prepare(Scene scene, const std::string& name, Report& report) {
 }
 
 void add_rows(const std::string& scenario, const std::string& mesh, std::size_t triangles,
-              ScenarioResult result, bool keep_free, bool keep_contact, Report& report) {
+              testing::ScenarioResult result, bool keep_free, bool keep_contact, Report& report) {
   if (keep_free) {
     report.rows.push_back({scenario,
                            mesh,
@@ -99,7 +98,7 @@ void add_rows(const std::string& scenario, const std::string& mesh, std::size_t 
   }
   if (keep_contact) {
     report.rows.push_back({scenario, mesh, triangles, "contact", result.contact_tick_us.size(),
-                           percentiles(result.contact_tick_us), result.checks});
+                           percentiles(result.contact_tick_us), result.counts});
   }
 }
 
@@ -126,8 +125,9 @@ void bench_table1(const Options& options, Report& report) {
     std::string name;
     bool brain, skin;
   };
-  const CycleShape press{.cycles = options.quick ? 5 : 10, .seed = options.seed};
-  CycleShape hover = press;
+  // The brain's folds end a press-slide within about 6 mm (see surface_press_slides): more cycles.
+  const testing::CycleShape press{.cycles = options.quick ? 10 : 25, .seed = options.seed};
+  testing::CycleShape hover = press;
   hover.press_depth_mm = -3.0f;  // 2 to 4 mm above the surface
   hover.depth_amplitude_mm = 1.0f;
   for (const Case& c :
@@ -136,15 +136,14 @@ void bench_table1(const Options& options, Report& report) {
     const Prepared prepared = prepare(table1_scene(c.brain, c.skin), c.name, report);
     const std::size_t touched = prepared.scene.objects.size() - 1;  // the skin when both
     const std::size_t triangles = prepared.bvh.triangle_count();
-    const MeshReference reference(prepared.scene);
+    const testing::MeshOracle oracle(prepared.scene);
+    const auto hovers = testing::surface_press_slides(prepared.scene, touched, oracle, hover);
     add_rows("hover", c.name, triangles,
-             run_cycles(prepared.scene, prepared.bvh,
-                        aimed_cycles(prepared.scene, touched, hover, &reference), 1e3f, nullptr),
-             true, false, report);
+             testing::run_scenario(prepared.scene, prepared.bvh, hovers, 1e3f, nullptr), true, false, report);
+    const auto presses = testing::surface_press_slides(prepared.scene, touched, oracle, press);
     add_rows("press-slide", c.name, triangles,
-             run_cycles(prepared.scene, prepared.bvh,
-                        aimed_cycles(prepared.scene, touched, press, &reference), 1e3f, &reference),
-             false, true, report);
+             testing::run_scenario(prepared.scene, prepared.bvh, presses, 1e3f, &oracle), false, true,
+             report);
   }
 }
 
@@ -153,7 +152,7 @@ void bench_table1(const Options& options, Report& report) {
 void bench_sphere_slide(const Options& options, Report& report) {
   std::vector<std::size_t> sizes{22'952, 53'021};
   if (!options.quick) sizes.insert(sizes.end(), {1'000'000, 10'000'000});
-  const BumpySphereReference reference(50.0f, 1.5f);
+  const testing::BumpySphereOracle oracle(50.0f, 1.5f);
   for (const std::size_t requested : sizes) {
     progress("bumpy sphere of " + std::to_string(requested) + " triangles");
     Material material;
@@ -161,32 +160,32 @@ void bench_sphere_slide(const Options& options, Report& report) {
     material.damping_ns_per_m = 2.0f;
     Scene scene;
     scene.objects.push_back(object("bumpy-sphere", make_bumpy_sphere(50.0f, 1.5f, requested), material));
-    reference.verify(scene.objects[0].mesh);
+    oracle.verify(scene.objects[0].mesh);
     const std::string name = "bumpy-sphere-" + std::to_string(scene.objects[0].mesh.triangle_count());
     const Prepared prepared = prepare(std::move(scene), name, report);
     const std::size_t triangles = prepared.bvh.triangle_count();
-    const CycleShape slide{.cycles = 50, .seed = options.seed};
-    add_rows(
-        "sphere-slide", name, triangles,
-        run_cycles(prepared.scene, prepared.bvh, sphere_slide_cycles(reference, slide), 1e3f, &reference),
-        false, true, report);
-    CycleShape hover{.cycles = 10, .seed = options.seed + 1};
+    const testing::CycleShape slide{.cycles = 50, .seed = options.seed};
+    add_rows("sphere-slide", name, triangles,
+             testing::run_scenario(prepared.scene, prepared.bvh, testing::sphere_slide(oracle, slide), 1e3f,
+                                   &oracle),
+             false, true, report);
+    testing::CycleShape hover{.cycles = 10, .seed = options.seed + 1};
     hover.press_depth_mm = -3.0f;
     hover.depth_amplitude_mm = 1.0f;
     add_rows("sphere-hover", name, triangles,
-             run_cycles(prepared.scene, prepared.bvh, sphere_slide_cycles(reference, hover), 1e3f, nullptr),
+             testing::run_scenario(prepared.scene, prepared.bvh, testing::sphere_slide(oracle, hover), 1e3f,
+                                   nullptr),
              true, false, report);
   }
 }
 
-LoopRow run_loop(const Prepared& prepared, double rate_hz, bool loaded, double seconds, std::uint32_t seed) {
-  const CycleShape shape{.cycles = 1, .seed = seed};
-  const PressSlide aim = aimed_press_slides(prepared.scene, prepared.scene.objects.size() - 1, shape).front();
-  ScriptedDevice device(PressSlidePath(aim), true);
+LoopRow run_loop(const Prepared& prepared, const SampledPath& press, double rate_hz, bool loaded,
+                 double seconds) {
+  ScriptedDevice device(press, true);
   HapticLoopParams params;
   params.rate_hz = rate_hz;
   params.statistics_window = std::size_t(rate_hz * seconds * 1.25);
-  std::optional<CpuBurners> burners;
+  std::optional<testing::CpuBurners> burners;
   if (loaded) burners.emplace(2);
   HapticLoop loop(device, prepared.scene, prepared.bvh, params);
   const auto start = Clock::now();
@@ -215,6 +214,11 @@ void bench_loops(const Options& options, Report& report) {
   Scene scene = table1_scene(true, true);
   Bvh bvh = Bvh::build(scene);
   const Prepared prepared{std::move(scene), std::move(bvh)};
+  // One press-slide on the skin, over and over.
+  const SampledPath press =
+      testing::surface_press_slides(prepared.scene, prepared.scene.objects.size() - 1,
+                                    testing::MeshOracle(prepared.scene), {.cycles = 1, .seed = options.seed})
+          .front();
   const double seconds = options.quick ? 3.0 : 10.0;
   std::vector<double> rates{1000.0};
   if (!options.quick) rates.push_back(10'000.0);
@@ -222,7 +226,7 @@ void bench_loops(const Options& options, Report& report) {
     for (const bool loaded : {false, true}) {
       progress(std::to_string(int(rate)) + " Hz, " + (loaded ? "loaded by 2 spinning processes" : "idle") +
                ", " + std::to_string(int(seconds)) + " s");
-      report.loops.push_back(run_loop(prepared, rate, loaded, seconds, options.seed));
+      report.loops.push_back(run_loop(prepared, press, rate, loaded, seconds));
     }
   }
 }
@@ -265,15 +269,20 @@ void print(const Report& report, const Options& options) {
                 row.sched_fifo ? "yes" : "no");
   }
   std::printf(
-      "\npop: steps with the tip > 0.5 mm inside and no force; inward: steps with the tip > 0.2 mm inside "
-      "and the\n"
-      "force pointing inward; inside: steps with the proxy > 0.5 mm inside; stuck: cycles where the proxy, "
-      "in\n"
-      "contact, trailed the tip by more than 1 mm beyond the tip's depth. Inside is measured on the bumpy "
-      "sphere's\n"
-      "implicit surface or, on other meshes, by a grid of the mesh's triangles (ray parity and nearest\n"
-      "triangle), independent of the BVH and the proxy. sphere-slide asks for 53,021 triangles and gets\n"
-      "53,022: a closed triangle mesh has an even count (each edge joins two triangles, so 3F = 2E).\n");
+      "\nThe counts are defined once, in testing/include/palpate/testing/haptic_scenarios.hpp "
+      "(ScenarioCounts):\n"
+      "pop: ticks with the tip > 0.5 mm inside and no force; inward: ticks with the tip > 0.2 mm inside and "
+      "a\n"
+      "force into the surface where the proxy rests; inside: ticks with the proxy > 0.5 mm inside; stuck: "
+      "cycles\n"
+      "where the proxy stayed more than 0.2 mm farther from the tip than the faces it touches allow, for "
+      "more\n"
+      "than a tick, or was still in contact at the end. Judged on the bumpy sphere's implicit surface or, "
+      "on\n"
+      "other meshes, on grids of the mesh's triangles, independent of the BVH and the proxy. The Table I "
+      "rows\n"
+      "walk along the real surface (the brain's slides end where its folds are thinner than the press).\n"
+      "sphere-slide asks for 53,021 triangles and gets 53,022: a closed triangle mesh has an even count.\n");
 }
 
 void write_json(const Report& report, const Options& options) {

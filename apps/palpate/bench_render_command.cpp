@@ -109,10 +109,10 @@ struct Camera {
 
 // The whole scene in view, seen from behind (-y; the face looks along +y) and a little above.
 Camera frame_scene(const Scene& scene, int width, int height) {
-  const glm::vec3 center = world_bounds(scene).center();
+  const glm::vec3 center = world_bounds(scene).center_mm();
   float radius = 0.0f;
   for (const SceneObject& o : scene.objects) {
-    for (const glm::vec3& p : o.mesh.positions) {
+    for (const glm::vec3& p : o.mesh.positions_mm) {
       radius = std::max(radius, glm::distance(center, glm::vec3(o.transform * glm::vec4(p, 1.0f))));
     }
   }
@@ -127,22 +127,22 @@ Camera frame_scene(const Scene& scene, int width, int height) {
 // toward a point slightly off the camera axis; depth 4 mm, with the touched object's sigma.
 Contact visible_contact(const Scene& scene, const Camera& camera) {
   const SceneObject& touched = scene.objects.front();
-  const glm::vec3 center = world_bounds(scene).center();
+  const glm::vec3 center = world_bounds(scene).center_mm();
   const glm::vec3 toward =
       glm::normalize(camera.eye - center + glm::vec3(0.1f, 0.0f, 0.12f) * glm::length(camera.eye - center));
   std::size_t best = 0;
   float best_reach = -1e30f;
   for (std::size_t i = 0; i < touched.mesh.vertex_count(); ++i) {
-    const float reach =
-        glm::dot(glm::vec3(touched.transform * glm::vec4(touched.mesh.positions[i], 1.0f)) - center, toward);
+    const float reach = glm::dot(
+        glm::vec3(touched.transform * glm::vec4(touched.mesh.positions_mm[i], 1.0f)) - center, toward);
     if (reach > best_reach) best_reach = reach, best = i;
   }
   Contact contact;
   contact.object = 0;
-  contact.point = glm::vec3(touched.transform * glm::vec4(touched.mesh.positions[best], 1.0f));
+  contact.point_mm = glm::vec3(touched.transform * glm::vec4(touched.mesh.positions_mm[best], 1.0f));
   contact.normal = glm::normalize(glm::mat3(touched.transform) * touched.mesh.normals[best]);
   contact.depth_mm = 4.0f;
-  contact.hip = contact.point - contact.normal * contact.depth_mm;
+  contact.hip_mm = contact.point_mm - contact.normal * contact.depth_mm;
   return contact;
 }
 
@@ -208,7 +208,7 @@ int bench_render(const BenchOptions& options) {
                 with_thousands(triangles).c_str());
 
     const auto frame = [&](const Variant& variant) {
-      gl::DrawOptions draw;
+      gl::DrawParams draw;
       draw.deformation = variant.deformation;
       draw.skip_unreached = variant.skip_unreached;
       target.bind();

@@ -6,11 +6,12 @@
 #include <fstream>
 
 #include "commands.hpp"
+#include "demo_phases.hpp"
 #include "format.hpp"
 #include "gl_session.hpp"
 #include "palpate/core/scene_file.hpp"
+#include "palpate/gl/probe_run.hpp"
 #include "plot.hpp"
-#include "probe_scenes.hpp"
 #include "report.hpp"
 
 namespace palpate::cli {
@@ -25,8 +26,8 @@ struct Table1Options {
   int width = 1280, height = 1024;
 };
 
-void print_markdown(const std::string& device, const Table1Options& options,
-                    const std::vector<PhaseResult>& gpu, const std::vector<PhaseResult>& naive) {
+void print_markdown(const std::string& device, const Table1Options& options, const std::vector<ModelRun>& gpu,
+                    const std::vector<ModelRun>& naive) {
   std::printf("\nTable I, this run: %s, %dx%d, %.0f s a row in contact\n\n", device.c_str(), options.width,
               options.height, options.seconds);
   std::printf(
@@ -34,16 +35,18 @@ void print_markdown(const std::string& device, const Table1Options& options,
       "| GPU / CPU-naive |\n");
   std::printf("|---|---:|---:|---:|---:|---:|---:|---:|\n");
   for (std::size_t i = 0; i < gpu.size(); ++i) {
-    const PhaseResult& r = gpu[i];
-    std::printf("| %s | %s | %s | %.1f | %.1f | %.2f / %.2f | %.1f | %.2fx |\n", r.model.c_str(),
+    const gl::ProbeRunResult& r = gpu[i].run;
+    const double naive_fps = naive[i].run.graphics_fps;
+    std::printf("| %s | %s | %s | %.1f | %.1f | %.2f / %.2f | %.1f | %.2fx |\n", gpu[i].model.c_str(),
                 with_thousands(r.vertices).c_str(), with_thousands(r.faces).c_str(), r.graphics_fps,
-                r.haptics_hz, r.contact_age_ms.p50, r.contact_age_ms.p99, naive[i].graphics_fps,
-                naive[i].graphics_fps > 0 ? r.graphics_fps / naive[i].graphics_fps : 0.0);
+                r.haptics_hz, r.contact_age_ms.p50, r.contact_age_ms.p99, naive_fps,
+                naive_fps > 0 ? r.graphics_fps / naive_fps : 0.0);
   }
   std::printf(
       "\nHaptic thread during each GPU row: missed deadlines, period error p50 / p99 / p99.9 / max us\n\n");
-  for (const PhaseResult& r : gpu) {
-    std::printf("- %s: %llu ticks, %llu missed, %.1f / %.1f / %.1f / %.1f us\n", r.model.c_str(),
+  for (const ModelRun& row : gpu) {
+    const gl::ProbeRunResult& r = row.run;
+    std::printf("- %s: %llu ticks, %llu missed, %.1f / %.1f / %.1f / %.1f us\n", row.model.c_str(),
                 static_cast<unsigned long long>(r.haptics.ticks),
                 static_cast<unsigned long long>(r.haptics.missed_deadlines), r.haptics.period_error_us.p50,
                 r.haptics.period_error_us.p99, r.haptics.period_error_us.p999, r.haptics.period_error_us.max);
@@ -51,12 +54,13 @@ void print_markdown(const std::string& device, const Table1Options& options,
 }
 
 // The haptic period and the frame time over the whole run, rows one after the other.
-std::filesystem::path plot_run(const std::string& file, const std::vector<PhaseResult>& rows) {
+std::filesystem::path plot_run(const std::string& file, const std::vector<ModelRun>& rows) {
   PlotPanel haptic{"Haptic thread period (1 kHz target)", "time in run, s", "period, us", {}};
   PlotPanel frames{"Graphics frame time", "time in run, s", "frame, ms", {}};
   double offset = 0.0;
-  for (const PhaseResult& r : rows) {
-    Series period{r.model, {}, {}};
+  for (const ModelRun& row : rows) {
+    const gl::ProbeRunResult& r = row.run;
+    Series period{row.model, {}, {}};
     const double period_s = r.haptics.target_hz > 0 ? 1.0 / r.haptics.target_hz : 1e-3;
     // The window holds the last ticks of the row: lay them out backwards from its end.
     const double start = offset + r.seconds - double(r.haptics.periods_us.size()) * period_s;
@@ -64,7 +68,7 @@ std::filesystem::path plot_run(const std::string& file, const std::vector<PhaseR
       period.x.push_back(start + double(i) * period_s);
       period.y.push_back(r.haptics.periods_us[i]);
     }
-    Series frame{r.model, {}, {}};
+    Series frame{row.model, {}, {}};
     for (std::size_t i = 0; i < r.frame_ms.size(); ++i) {
       frame.x.push_back(offset + r.frame_times_s[i]);
       frame.y.push_back(r.frame_ms[i]);
@@ -82,25 +86,29 @@ int bench_table1(const Table1Options& options) {
   gl::Framebuffer framebuffer(
       {.width = options.width, .height = options.height, .color = gl::ColorFormat::rgba8, .samples = 0});
   gl::Renderer renderer;
-  const std::vector<Phase> phases = table1_phases(scene, options.seconds);
-  std::vector<PhaseResult> gpu, naive;
+  const std::vector<Phase> phases =
+      table1_phases(scene, options.seconds, glm::vec2(options.width, options.height));
+  std::vector<ModelRun> gpu, naive;
   for (const Phase& phase : phases) {
     for (const gl::Deformation deformation : {gl::Deformation::gpu, gl::Deformation::cpu_naive}) {
       std::fprintf(stderr, "bench table1: %s, %s, %.0f s\n", phase.model.c_str(),
                    deformation == gl::Deformation::gpu ? "GPU deformation" : "CPU-naive", options.seconds);
-      RunOptions run;
-      run.deformation = deformation;
+      gl::ProbeRunParams run;
+      run.draw.deformation = deformation;
+      run.draw.probe_radius_mm = phase.probe_radius_mm;
       run.max_seconds = options.seconds;
       run.window = session.window.get();
       (deformation == gl::Deformation::gpu ? gpu : naive)
-          .push_back(run_phase(phase, renderer, framebuffer, run));
+          .push_back({phase.model, gl::run_probe_script(phase.scene, phase.camera, phase.script, renderer,
+                                                        framebuffer, run)});
     }
   }
   print_markdown(session.renderer, options, gpu, naive);
   if (!options.plot.empty()) std::printf("\nplot: %s\n", plot_run(options.plot, gpu).string().c_str());
   if (!options.json.empty()) {
     nlohmann::json report = run_report_json(session.renderer, options.width, options.height, gpu);
-    for (std::size_t i = 0; i < gpu.size(); ++i) report["rows"][i]["cpu_naive_fps"] = naive[i].graphics_fps;
+    for (std::size_t i = 0; i < gpu.size(); ++i)
+      report["rows"][i]["cpu_naive_fps"] = naive[i].run.graphics_fps;
     report["seconds_per_row"] = options.seconds;
     std::ofstream(options.json) << report.dump(2) << "\n";
     std::printf("json: %s\n", options.json.c_str());

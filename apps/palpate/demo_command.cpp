@@ -9,11 +9,12 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.hpp"
+#include "demo_phases.hpp"
 #include "gl_session.hpp"
 #include "image.hpp"
 #include "palpate/core/scene_file.hpp"
 #include "palpate/gl/png.hpp"
-#include "probe_scenes.hpp"
+#include "palpate/gl/probe_run.hpp"
 #include "report.hpp"
 
 namespace palpate::cli {
@@ -80,13 +81,13 @@ struct KeySlot {
   double at_time_s = -1.0;  // >= 0: the first frame at or after this time; < 0: the deepest frame
   int capture = -1;         // which capture fills it, -1 while empty
   float depth_mm = -1.0f;
-  CapturedFrame frame;
+  gl::CapturedFrame frame;
   Image full, thumbnail;
 
-  bool wants(int frame_phase, int frame_press, const CapturedFrame& f) const {
+  bool wants(int frame_phase, int frame_press, const gl::CapturedFrame& f) const {
     if (frame_phase != phase) return false;
     if (at_time_s >= 0.0) return capture < 0 && f.time_s >= at_time_s;
-    return frame_press == press && f.contact.in_contact() && f.contact.depth_mm > depth_mm;
+    return frame_press == press && f.tick.contact.in_contact() && f.tick.contact.depth_mm > depth_mm;
   }
 };
 
@@ -122,7 +123,7 @@ int run_demo(const DemoOptions& options) {
   std::filesystem::create_directories(out);
   const Scene scene = options.scene_file.empty() ? default_scene() : load_scene(options.scene_file);
   GlSession gl_session = open_gl(options.headless, options.width, options.height, "palpate demo");
-  const std::vector<Phase> phases = demo_phases(scene);
+  const std::vector<Phase> phases = demo_phases(scene, glm::vec2(options.width, options.height));
   std::printf("palpate demo: %zu objects, %zu vertices; %s on %s; output in %s/\n", scene.objects.size(),
               scene.vertex_count(), gl_session.window ? "window" : "headless EGL",
               gl_session.renderer.c_str(), out.string().c_str());
@@ -132,18 +133,21 @@ int run_demo(const DemoOptions& options) {
   gl::Renderer renderer;
   FrameWriter writer(out, options.width, options.height, options.video_fps);
   std::vector<KeySlot> slots = plan_key_frames(phases);
-  std::vector<PhaseResult> results;
+  std::vector<ModelRun> results;
   int captured = 0;
 
   for (int p = 0; p < int(phases.size()); ++p) {
     const Phase& phase = phases[std::size_t(p)];
     std::vector<double> press_starts;
     for (const ProbeScript::Stroke& stroke : phase.script.strokes) press_starts.push_back(stroke.start_s);
-    RunOptions run;
+    gl::ProbeRunParams run;
+    run.draw.probe_radius_mm = phase.probe_radius_mm;
+    run.captures_so_far = captured;
+    run.on_log = [](const std::string& line) { std::fprintf(stderr, "palpate: %s\n", line.c_str()); };
     run.capture_fps = options.video_fps;
     run.max_captures = options.frames;
     run.window = gl_session.window.get();
-    run.on_capture = [&](const CapturedFrame& frame) {
+    run.on_capture = [&](const gl::CapturedFrame& frame) {
       Image full{framebuffer.width(), framebuffer.height(), frame.framebuffer->read_rgba8()};
       writer.write(full);
       const auto later = std::upper_bound(press_starts.begin(), press_starts.end(), frame.time_s);
@@ -151,14 +155,15 @@ int run_demo(const DemoOptions& options) {
       for (KeySlot& slot : slots) {
         if (!slot.wants(p, press, frame)) continue;
         slot.capture = frame.index;
-        slot.depth_mm = frame.contact.depth_mm;
+        slot.depth_mm = frame.tick.contact.depth_mm;
         slot.frame = frame;
         slot.full = full;
         slot.thumbnail = downsample(full, 4);
       }
       ++captured;
     };
-    results.push_back(run_phase(phase, renderer, framebuffer, run, captured));
+    results.push_back({phase.model, gl::run_probe_script(phase.scene, phase.camera, phase.script, renderer,
+                                                         framebuffer, run)});
     if (options.frames >= 0 && captured >= options.frames) break;
     if (gl_session.window && gl_session.window->should_close()) break;
   }
@@ -185,7 +190,7 @@ int run_demo(const DemoOptions& options) {
   report["frames"] = {{"count", captured}, {"fps", options.video_fps}, {"at", frames_at}};
   report["key_frames"] = key_json;
   std::ofstream(out / "report.json") << report.dump(2) << "\n";
-  print_table1(stdout, gl_session.renderer, options.width, options.height, results, {});
+  print_table1(stdout, gl_session.renderer, options.width, options.height, results);
   std::printf("wrote %s/report.json, %s/contact_sheet.png, %d frames (%s)\n", out.string().c_str(),
               out.string().c_str(), captured, frames_at.c_str());
   return 0;

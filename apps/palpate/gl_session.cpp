@@ -11,7 +11,7 @@ GlSession open_gl(bool headless, int width, int height, const std::string& title
   const char* display = std::getenv("DISPLAY");
   const char* wayland = std::getenv("WAYLAND_DISPLAY");
   if (!headless && ((display && *display) || (wayland && *wayland))) {
-    gl::WindowOptions options;
+    gl::WindowParams options;
     options.width = width;
     options.height = height;
     options.title = title;

@@ -16,8 +16,8 @@ namespace palpate::cli {
 namespace {
 
 // Loader warnings (fields dropped, text skipped; each names its file) go to stderr.
-LoadOptions warn_on_stderr() {
-  LoadOptions options;
+LoadParams warn_on_stderr() {
+  LoadParams options;
   options.on_warning = [](const std::string& warning) {
     std::fprintf(stderr, "palpate: warning: %s\n", warning.c_str());
   };
@@ -36,7 +36,7 @@ int mesh_info(const std::vector<std::string>& files) {
       Mesh merged;
       for (const SceneObject& object : model.objects) {
         Mesh world = object.mesh;
-        for (glm::vec3& p : world.positions) p = glm::vec3(object.transform * glm::vec4(p, 1.0f));
+        for (glm::vec3& p : world.positions_mm) p = glm::vec3(object.transform * glm::vec4(p, 1.0f));
         append_mesh(merged, world);
       }
       const Bounds box = bounds(merged);
@@ -46,8 +46,8 @@ int mesh_info(const std::vector<std::string>& files) {
       std::printf("  vertices    %s\n", with_thousands(merged.vertex_count()).c_str());
       std::printf("  triangles   %s\n", with_thousands(merged.triangle_count()).c_str());
       std::printf("  bounds      [%.2f, %.2f, %.2f] .. [%.2f, %.2f, %.2f] (size %.2f x %.2f x %.2f)\n",
-                  box.min.x, box.min.y, box.min.z, box.max.x, box.max.y, box.max.z, box.size().x,
-                  box.size().y, box.size().z);
+                  box.min_mm.x, box.min_mm.y, box.min_mm.z, box.max_mm.x, box.max_mm.y, box.max_mm.z,
+                  box.size_mm().x, box.size_mm().y, box.size_mm().z);
       std::printf("  closed      %s (%zu boundary edges)\n", topo.closed() ? "yes" : "no",
                   topo.boundary_edges);
       std::printf("  manifold    %s (%zu non-manifold edges, %zu degenerate triangles)\n",

@@ -5,20 +5,27 @@
 #include <string>
 #include <vector>
 
-#include "simulation.hpp"
+#include "demo_phases.hpp"
+#include "palpate/gl/probe_run.hpp"
 
 namespace palpate::cli {
 
+// One row of Table I: a phase's model and what its run measured.
+struct ModelRun {
+  std::string model;
+  gl::ProbeRunResult run;
+};
+
 // {device, width, height, rows: [{model, vertices, faces, graphics_fps, haptics_hz,
-//  contact_age_ms: {p50, p99}, frames, seconds, haptics: {...}}]}
+//  contact_age_ms: {p50, p99}, max_force_n, frames, seconds, haptics: {...}}]}
 nlohmann::json run_report_json(const std::string& device, int width, int height,
-                               const std::vector<PhaseResult>& results);
+                               const std::vector<ModelRun>& rows);
 
-// A frame's file, its scene state, camera and contact: enough to render it again for comparison.
-nlohmann::json key_frame_json(const std::string& file, const Phase& phase, const CapturedFrame& frame);
+// A frame's file, its scene state, camera and tick result: enough to render it again for comparison.
+nlohmann::json key_frame_json(const std::string& file, const Phase& phase, const gl::CapturedFrame& frame);
 
-// The paper's Table I with this run's figures; with `cpu_naive_fps` (one per row) two more columns.
+// The paper's Table I with this run's figures.
 void print_table1(std::FILE* out, const std::string& device, int width, int height,
-                  const std::vector<PhaseResult>& results, const std::vector<double>& cpu_naive_fps);
+                  const std::vector<ModelRun>& rows);
 
 }  // namespace palpate::cli

@@ -15,16 +15,17 @@
 #include <memory>
 
 #include "commands.hpp"
+#include "demo_phases.hpp"
 #include "gl_session.hpp"
 #include "palpate/core/bvh.hpp"
 #include "palpate/core/error.hpp"
 #include "palpate/core/orbit_camera.hpp"
+#include "palpate/core/pick.hpp"
 #include "palpate/core/scene_file.hpp"
 #include "palpate/gl/png.hpp"
 #include "palpate/gl/renderer.hpp"
 #include "palpate/haptics/haptic_loop.hpp"
 #include "palpate/haptics/virtual_device.hpp"
-#include "probe_scenes.hpp"
 
 namespace palpate::cli {
 namespace {
@@ -37,47 +38,22 @@ struct ViewOptions {
   float press_depth_mm = 0.0f;  // start with the tip this deep under the window's centre
 };
 
-// The haptic side of the viewer. The haptic thread reads the scene's stiffness, damping and
-// touchability, so those change only while its loop is stopped.
-struct Haptics {
-  Bvh bvh;
-  std::unique_ptr<HapticLoop> loop;
-};
-
-// Starts a new loop on `scene`, rebuilding the BVH first when touchability changed.
-void restart_haptics(Haptics& haptics, VirtualDevice& device, const Scene& scene, bool rebuild_bvh) {
-  haptics.loop.reset();  // stops and joins the thread: it borrows the BVH
-  if (rebuild_bvh) haptics.bvh = Bvh::build(scene);
-  haptics.loop = std::make_unique<HapticLoop>(device, scene, haptics.bvh);
-  haptics.loop->start();
-}
-
-// Applies the panel's edited materials to the scene: what the haptic thread reads only with its loop
-// stopped, what only the renderer reads (its own copy, uploaded again) at once.
-void apply_materials(Scene& scene, const std::vector<Material>& edited, Haptics& haptics,
-                     VirtualDevice& device, gl::Renderer& renderer) {
-  bool touch = false, force = false, look = false;
+// Hands the panel's edited materials to the haptic loop (stiffness, damping, touchability: from its next
+// tick) and the renderer (sigma, colour, visibility: from the next frame), for the objects that changed.
+void apply_materials(const std::vector<Material>& edited, std::vector<Material>& applied, HapticLoop& loop,
+                     gl::Renderer& renderer) {
   for (std::size_t i = 0; i < edited.size(); ++i) {
-    const Material& now = scene.objects[i].material;
+    const Material& now = applied[i];
     const Material& next = edited[i];
-    touch |= now.touchable != next.touchable;
-    force |=
-        now.stiffness_n_per_mm != next.stiffness_n_per_mm || now.damping_ns_per_m != next.damping_ns_per_m;
-    look |= now.sigma_mm != next.sigma_mm || now.visible != next.visible || now.color != next.color;
-  }
-  if (touch || force) {
-    haptics.loop.reset();
-    for (std::size_t i = 0; i < edited.size(); ++i) scene.objects[i].material = edited[i];
-    restart_haptics(haptics, device, scene, touch);
-  } else if (look) {
-    for (std::size_t i = 0; i < edited.size(); ++i) {
-      Material& material = scene.objects[i].material;
-      material.sigma_mm = edited[i].sigma_mm;
-      material.visible = edited[i].visible;
-      material.color = edited[i].color;
+    if (now.touchable != next.touchable || now.stiffness_n_per_mm != next.stiffness_n_per_mm ||
+        now.damping_ns_per_m != next.damping_ns_per_m) {
+      loop.set_material(i, next);
     }
+    if (now.sigma_mm != next.sigma_mm || now.visible != next.visible || now.color != next.color) {
+      renderer.set_material(i, next);
+    }
+    applied[i] = next;
   }
-  if (look) renderer.upload(scene);
 }
 
 bool save_screenshot(const std::string& file, int width, int height) {
@@ -129,10 +105,10 @@ void draw_force_arrow(const glm::mat4& view_projection, glm::vec2 size, glm::vec
 // Moves the tip under the cursor in the plane through it that faces the camera.
 glm::vec3 tip_under_cursor(const OrbitCamera& camera, glm::vec2 cursor, glm::vec2 size, glm::vec3 tip) {
   const OrbitCamera::Ray ray = camera.ray_through(cursor, size);
-  const glm::vec3 facing = glm::normalize(camera.target - camera.eye());
+  const glm::vec3 facing = glm::normalize(camera.target_mm - camera.eye());
   const float along = glm::dot(ray.direction, facing);
   if (std::abs(along) < 1e-4f) return tip;
-  return ray.origin + ray.direction * (glm::dot(tip - ray.origin, facing) / along);
+  return ray.origin_mm + ray.direction * (glm::dot(tip - ray.origin_mm, facing) / along);
 }
 
 struct Panel {
@@ -140,10 +116,10 @@ struct Panel {
   int deformation = 0;  // gl::Deformation: gpu, cpu_naive, none
 };
 
-// The control panel. Materials are edited in `materials` (a copy: the haptic thread reads the scene's).
-void draw_panel(const Scene& scene, std::vector<Material>& materials, gl::DrawOptions& draw, Panel& panel,
-                const LoopStatistics& stats, const Contact& contact, glm::vec3 force_n, bool& reset_tip,
-                bool& screenshot) {
+// The control panel. Materials are edited in `materials`, and handed on by apply_materials.
+void draw_panel(const Scene& scene, std::vector<Material>& materials, gl::DrawParams& draw, Panel& panel,
+                const LoopStatistics& stats, const TickResult& tick, bool& reset_tip, bool& screenshot) {
+  const Contact& contact = tick.contact;
   ImGui::SetNextWindowPos(ImVec2(10, 10), ImGuiCond_FirstUseEver);
   ImGui::SetNextWindowSize(ImVec2(360, 0), ImGuiCond_FirstUseEver);
   ImGui::Begin("palpate");
@@ -165,11 +141,11 @@ void draw_panel(const Scene& scene, std::vector<Material>& materials, gl::DrawOp
   if (ImGui::CollapsingHeader("Contact", ImGuiTreeNodeFlags_DefaultOpen)) {
     if (contact.in_contact()) {
       ImGui::Text("on %s, p = %.2f mm, |F| = %.2f N", scene.objects[std::size_t(contact.object)].name.c_str(),
-                  contact.depth_mm, glm::length(force_n));
+                  contact.depth_mm, glm::length(tick.force_n));
     } else {
       ImGui::TextUnformatted("free");
     }
-    ImGui::Text("tip %.1f %.1f %.1f mm", contact.hip.x, contact.hip.y, contact.hip.z);
+    ImGui::Text("tip %.1f %.1f %.1f mm", contact.hip_mm.x, contact.hip_mm.y, contact.hip_mm.z);
     reset_tip = ImGui::Button("Reset tip");
     ImGui::SameLine();
     screenshot = ImGui::Button("Screenshot");
@@ -231,25 +207,32 @@ int run_view(const ViewOptions& options) {
   const glm::vec2 initial_size{float(window.framebuffer_width()), float(window.framebuffer_height())};
   // The tip starts 10 mm in front of the surface under the window's centre; with --press-depth it then
   // moves that deep into it (approaching from outside, as a hand would).
-  Haptics haptics;
-  haptics.bvh = Bvh::build(scene);  // the haptic loop's, also to find where the tip starts
-  glm::vec3 start_tip = camera.target, tip = camera.target;
-  const OrbitCamera::Ray ray = camera.ray_through(initial_size * 0.5f, initial_size);
-  const BvhHit hit = haptics.bvh.first_hit(
-      glm::dvec3(ray.origin), glm::dvec3(ray.origin + ray.direction * camera.distance_mm * 3.0f));
+  // Over every object, so that the panel can make any of them touchable while the loop runs.
+  const Bvh bvh = Bvh::build(scene, {});
+  glm::vec3 start_tip = camera.target_mm, tip = camera.target_mm;
+  std::vector<std::uint8_t> touchable;
+  for (const SceneObject& object : scene.objects) touchable.push_back(object.material.touchable);
+  const BvhHit hit = pick(bvh, camera, initial_size * 0.5f, initial_size, touchable);
   if (hit.hit()) {
-    start_tip = hit.point - ray.direction * 10.0f * scale;
-    tip = options.press_depth_mm > 0.0f ? hit.point + ray.direction * options.press_depth_mm : start_tip;
+    const glm::vec3 along = camera.ray_through(initial_size * 0.5f, initial_size).direction;
+    start_tip = hit.point_mm - along * 10.0f * scale;
+    tip = options.press_depth_mm > 0.0f ? hit.point_mm + along * options.press_depth_mm : start_tip;
   }
   VirtualDevice device(start_tip);
   device.set_target(tip);
-  restart_haptics(haptics, device, scene, false);
-  std::vector<Material> materials;
-  for (const SceneObject& object : scene.objects) materials.push_back(object.material);
+  HapticLoopParams loop_params;
+  loop_params.on_log = [](const std::string& line) {
+    std::fprintf(stderr, "palpate view: %s\n", line.c_str());
+  };
+  HapticLoop loop(device, scene, bvh, loop_params);
+  loop.start();
+  std::vector<Material> applied, edited;
+  for (const SceneObject& object : scene.objects) applied.push_back(object.material);
+  edited = applied;
 
   gl::Renderer renderer;
   renderer.upload(scene);
-  gl::DrawOptions draw;
+  gl::DrawParams draw;
   draw.probe_radius_mm *= scale;
   Panel panel;
   panel.scale = scale;
@@ -280,7 +263,7 @@ int run_view(const ViewOptions& options) {
       if (dragging_tip) tip = tip_under_cursor(camera, pixel, size, tip);
       if (io.MouseWheel != 0.0f) {
         if (io.KeyShift) {
-          tip += glm::normalize(camera.target - camera.eye()) * io.MouseWheel * scale;
+          tip += glm::normalize(camera.target_mm - camera.eye()) * io.MouseWheel * scale;
         } else {
           camera.zoom(std::pow(0.9f, io.MouseWheel));
         }
@@ -289,7 +272,7 @@ int run_view(const ViewOptions& options) {
     last_cursor = cursor;
     bool reset_tip = false, screenshot = false;
     if (!io.WantCaptureKeyboard) {
-      const glm::vec3 facing = glm::normalize(camera.target - camera.eye());
+      const glm::vec3 facing = glm::normalize(camera.target_mm - camera.eye());
       const float step = 40.0f * scale * io.DeltaTime;  // 40 mm/s in the default scene
       if (glfwGetKey(native, GLFW_KEY_W) == GLFW_PRESS) tip += facing * step;
       if (glfwGetKey(native, GLFW_KEY_S) == GLFW_PRESS) tip -= facing * step;
@@ -299,34 +282,33 @@ int run_view(const ViewOptions& options) {
     }
     device.set_target(tip);
 
-    const Contact latest = haptics.loop->latest_contact();
-    Contact shown = latest;
-    if (!shown.in_contact()) shown.hip = device.position();
-    const LoopStatistics stats = haptics.loop->statistics();
+    const TickResult latest = loop.latest();
+    const LoopStatistics stats = loop.statistics();
 
     ImGui_ImplOpenGL3_NewFrame();
     ImGui_ImplGlfw_NewFrame();
     ImGui::NewFrame();
     bool panel_reset = false, panel_shot = false;
-    draw_panel(scene, materials, draw, panel, stats, shown, device.last_force(), panel_reset, panel_shot);
+    draw_panel(scene, edited, draw, panel, stats, latest, panel_reset, panel_shot);
     if (reset_tip || panel_reset) {
       tip = start_tip;
       device.set_target(tip);
     }
     const glm::mat4 view = camera.view(), projection = camera.projection(size.x / size.y);
-    if (latest.in_contact())
-      draw_force_arrow(projection * view, size, latest.hip, device.last_force(), latest.depth_mm,
-                       15.0f * scale);
+    if (latest.contact.in_contact()) {
+      draw_force_arrow(projection * view, size, latest.contact.hip_mm, latest.force_n,
+                       latest.contact.depth_mm, 15.0f * scale);
+    }
     ImGui::Render();
 
-    apply_materials(scene, materials, haptics, device, renderer);
+    apply_materials(edited, applied, loop, renderer);
     draw.deformation = std::array{gl::Deformation::gpu, gl::Deformation::cpu_naive,
                                   gl::Deformation::none}[std::size_t(panel.deformation)];
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glViewport(0, 0, width, height);
     glClearColor(0.08f, 0.09f, 0.11f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    renderer.draw(view, projection, std::span<const Contact>(&shown, 1), draw);
+    renderer.draw(view, projection, std::span<const Contact>(&latest.contact, 1), draw);
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     ++frame;
 
@@ -341,7 +323,7 @@ int run_view(const ViewOptions& options) {
     window.swap_buffers();
     if (last_frame) window.request_close();
   }
-  haptics.loop->stop();
+  loop.stop();
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();

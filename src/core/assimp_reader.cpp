@@ -64,9 +64,9 @@ struct Collector {
       }
     }
     Mesh& mesh = object.mesh;
-    mesh.positions.reserve(in.mNumVertices);
+    mesh.positions_mm.reserve(in.mNumVertices);
     for (unsigned v = 0; v < in.mNumVertices; ++v)
-      mesh.positions.push_back(transform_point(model, in.mVertices[v]));
+      mesh.positions_mm.push_back(transform_point(model, in.mVertices[v]));
     if (in.HasNormals()) {
       mesh.normals.reserve(in.mNumVertices);
       for (unsigned v = 0; v < in.mNumVertices; ++v) {
@@ -91,8 +91,8 @@ struct Collector {
                           {face.mIndices[0], mirrored ? face.mIndices[2] : face.mIndices[1],
                            mirrored ? face.mIndices[1] : face.mIndices[2]});
     }
-    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-      const glm::vec3 p = mesh.positions[v];
+    for (std::size_t v = 0; v < mesh.positions_mm.size(); ++v) {
+      const glm::vec3 p = mesh.positions_mm[v];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
         throw Error(input.file, 0,
                     "mesh '" + object.name + "': vertex " + std::to_string(v) +
@@ -122,7 +122,7 @@ struct Collector {
 
 }  // namespace
 
-Scene read_assimp_model(const AssimpInput& input, const LoadOptions& options) {
+Scene read_assimp_model(const AssimpInput& input, const LoadParams& options) {
   Assimp::Importer importer;
   // Line and point primitives are split off by SortByPType and dropped: palpate draws triangles.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);

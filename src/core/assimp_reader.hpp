@@ -15,6 +15,6 @@ struct AssimpInput {
   bool weld_positions = false;          // OBJ and STL: one vertex per distinct position (see load.hpp)
 };
 
-Scene read_assimp_model(const AssimpInput& input, const LoadOptions& options);
+Scene read_assimp_model(const AssimpInput& input, const LoadParams& options);
 
 }  // namespace palpate::detail

@@ -231,11 +231,11 @@ void place_on_surface(Mesh& mesh, const BrainShape& shape, const std::vector<glm
   std::vector<double> shares(vertices, share);
   const auto put = [&](std::uint32_t v) {
     const glm::dvec3 w = glm::normalize(from[v] + shares[v] * (to[v] - from[v]));
-    mesh.positions[v] = glm::vec3(shape.radius(w) * w);
+    mesh.positions_mm[v] = glm::vec3(shape.radius(w) * w);
   };
   const auto turned_over = [&](std::uint32_t t) {
-    return !faces_away(mesh.positions[mesh.indices[3 * t]], mesh.positions[mesh.indices[3 * t + 1]],
-                       mesh.positions[mesh.indices[3 * t + 2]]);
+    return !faces_away(mesh.positions_mm[mesh.indices[3 * t]], mesh.positions_mm[mesh.indices[3 * t + 1]],
+                       mesh.positions_mm[mesh.indices[3 * t + 2]]);
   };
   for (std::uint32_t v = 0; v < vertices; ++v) put(v);
   std::vector<std::uint32_t> check(triangles), redo;
@@ -275,7 +275,7 @@ Mesh make_brain_phantom(std::size_t vertices) {
   std::vector<glm::dvec3> ringed(vertices), folded(vertices);
   for (std::size_t v = 0; v < vertices; ++v) {
     // The base sphere turned to put its poles on the x axis (x <- z, y <- x, z <- y: a rotation).
-    const glm::vec3 p = mesh.positions[v];
+    const glm::vec3 p = mesh.positions_mm[v];
     ringed[v] = shape.across_fissure(glm::normalize(glm::dvec3(p.z, p.x, p.y)));
     folded[v] = shape.across_sulcus(ringed[v]);
   }

@@ -104,21 +104,27 @@ Bounds Bvh::bounds() const noexcept {
   return {nodes_[0].min, nodes_[0].max};
 }
 
-void Bvh::locate(std::uint32_t primitive, int& object, int& triangle) const noexcept {
+bool Bvh::contains(int object) const noexcept {
+  return std::any_of(objects_.begin(), objects_.end(),
+                     [object](const ObjectRange& r) { return r.object == object; });
+}
+
+Bvh::Location Bvh::locate(std::uint32_t primitive) const noexcept {
   const std::uint32_t id = triangles_[primitive].id;
   const auto range =
       std::upper_bound(objects_.begin(), objects_.end(), id,
                        [](std::uint32_t value, const ObjectRange& r) { return value < r.first_id; }) -
       1;
-  object = range->object;
-  triangle = int(id - range->first_id);
+  return {range->object, int(id - range->first_id)};
 }
 
 BvhHit Bvh::make_hit(std::uint32_t primitive, const glm::dvec3& point) const noexcept {
   BvhHit hit;
-  locate(primitive, hit.object, hit.triangle);
+  const Location location = locate(primitive);
+  hit.object = location.object;
+  hit.triangle = location.triangle;
   hit.primitive = primitive;
-  hit.point = glm::vec3(point);
+  hit.point_mm = glm::vec3(point);
   const Triangle& tri = triangles_[primitive];
   const glm::dvec3 n = glm::cross(vertex(tri, 1) - vertex(tri, 0), vertex(tri, 2) - vertex(tri, 0));
   const double length = glm::length(n);
@@ -126,8 +132,8 @@ BvhHit Bvh::make_hit(std::uint32_t primitive, const glm::dvec3& point) const noe
   return hit;
 }
 
-BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
-                      double start_tolerance_mm) const noexcept {
+BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces, double start_tolerance_mm,
+                      ObjectMask seen) const noexcept {
   if (nodes_.empty()) return {};
   const glm::dvec3 d = to - from;
   const glm::vec3 origin(from);
@@ -148,7 +154,8 @@ BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
     if (node.count > 0) {
       for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
         double t;
-        if (cross_triangle(triangles_[i], from, d, faces, start_tolerance_mm, t) && t < best_t) {
+        if (cross_triangle(triangles_[i], from, d, faces, start_tolerance_mm, t) && t < best_t &&
+            primitive_seen(seen, i)) {
           best_t = t;
           best = i;
         }
@@ -190,7 +197,7 @@ BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
   return hit;
 }
 
-BvhHit Bvh::closest_point(const glm::dvec3& point, double max_distance_mm) const noexcept {
+BvhHit Bvh::closest_point(const glm::dvec3& point, double max_distance_mm, ObjectMask seen) const noexcept {
   if (nodes_.empty() || !(max_distance_mm >= 0.0)) return {};
   const glm::vec3 p(point);
   double best_d2 = max_distance_mm * max_distance_mm;
@@ -211,7 +218,7 @@ BvhHit Bvh::closest_point(const glm::dvec3& point, double max_distance_mm) const
         const glm::dvec3 q = closest_point_on_triangle(point, vertex(tri, 0), vertex(tri, 1), vertex(tri, 2));
         const glm::dvec3 offset = q - point;
         const double d2 = glm::dot(offset, offset);
-        if (d2 <= best_d2) {
+        if (d2 <= best_d2 && primitive_seen(seen, i)) {
           best_d2 = d2;
           best_point = q;
           best = i;
@@ -244,6 +251,46 @@ BvhHit Bvh::closest_point(const glm::dvec3& point, double max_distance_mm) const
     if (!found) break;
   }
   if (!found_any) return {};
+  BvhHit hit = make_hit(best, best_point);
+  hit.distance_mm = float(std::sqrt(best_d2));
+  return hit;
+}
+
+BvhHit Bvh::closest_point_near(const glm::dvec3& point, const glm::dvec3& around, double radius_mm,
+                               ObjectMask seen) const noexcept {
+  if (nodes_.empty() || !(radius_mm >= 0.0)) return {};
+  const glm::vec3 centre(around);
+  // Box distances are in float: compare against a slightly enlarged bound so rounding never prunes.
+  const float reach2 = float(radius_mm * radius_mm) * 1.0001f + 1e-12f;
+  double best_d2 = std::numeric_limits<double>::infinity();
+  glm::dvec3 best_point(0.0);
+  std::uint32_t best = 0;
+  std::uint32_t stack[max_depth + 1];  // one sibling waits per level, plus the node popped next
+  std::size_t top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& node = nodes_[stack[--top]];
+    if (box_distance2(node, centre) > reach2) continue;
+    if (node.count == 0) {
+      stack[top++] = node.first;
+      stack[top++] = node.first + 1;
+      continue;
+    }
+    for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+      const Triangle& tri = triangles_[i];
+      const glm::dvec3 a = vertex(tri, 0), b = vertex(tri, 1), c = vertex(tri, 2);
+      const glm::dvec3 touch = closest_point_on_triangle(around, a, b, c) - around;
+      if (glm::dot(touch, touch) > radius_mm * radius_mm) continue;
+      const glm::dvec3 q = closest_point_on_triangle(point, a, b, c);
+      const double d2 = glm::dot(q - point, q - point);
+      if (d2 < best_d2 && primitive_seen(seen, i)) {
+        best_d2 = d2;
+        best_point = q;
+        best = i;
+      }
+    }
+  }
+  if (!std::isfinite(best_d2)) return {};
   BvhHit hit = make_hit(best, best_point);
   hit.distance_mm = float(std::sqrt(best_d2));
   return hit;

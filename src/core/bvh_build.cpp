@@ -205,6 +205,12 @@ std::uint32_t split_at_median(Reference* refs, std::uint32_t count, const Box& c
 }  // namespace
 
 Bvh Bvh::build(const Scene& scene) {
+  std::vector<std::uint8_t> touchable(scene.objects.size());
+  for (std::size_t o = 0; o < scene.objects.size(); ++o) touchable[o] = scene.objects[o].material.touchable;
+  return build(scene, touchable);
+}
+
+Bvh Bvh::build(const Scene& scene, ObjectMask included) {
   Bvh bvh;
   const std::size_t total = scene.triangle_count();
   // World-space vertices, transformed once per vertex so that triangles sharing a vertex share it bit
@@ -218,16 +224,16 @@ Bvh Bvh::build(const Scene& scene) {
   std::uint32_t next_id = 0;
   for (std::size_t o = 0; o < scene.objects.size(); ++o) {
     const SceneObject& object = scene.objects[o];
-    if (!object.material.touchable || object.mesh.triangle_count() == 0) continue;
+    if (!sees(included, int(o)) || object.mesh.triangle_count() == 0) continue;
     const Mesh& mesh = object.mesh;
-    const std::string what = "touchable object " + std::to_string(o) + " '" + object.name + "'";
+    const std::string what = "object " + std::to_string(o) + " '" + object.name + "'";
     if (mesh.indices.size() % 3 != 0) throw Error(what + ": index count is not a multiple of 3");
     if (std::size_t(next_id) + mesh.triangle_count() > max_triangles) {
       throw Error(what + ": the scene has too many triangles for one BVH");
     }
     const auto base = static_cast<std::uint32_t>(world.size());
-    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-      const glm::vec3 w = glm::vec3(object.transform * glm::vec4(mesh.positions[v], 1.0f));
+    for (std::size_t v = 0; v < mesh.positions_mm.size(); ++v) {
+      const glm::vec3 w = glm::vec3(object.transform * glm::vec4(mesh.positions_mm[v], 1.0f));
       if (!std::isfinite(w.x) || !std::isfinite(w.y) || !std::isfinite(w.z)) {
         throw Error(what + ": vertex " + std::to_string(v) + " is not finite in world space");
       }
@@ -238,9 +244,9 @@ Bvh Bvh::build(const Scene& scene) {
       Box box;
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t i = mesh.indices[3 * t + k];
-        if (i >= mesh.positions.size()) {
+        if (i >= mesh.positions_mm.size()) {
           throw Error(what + ": triangle " + std::to_string(t) + " uses vertex " + std::to_string(i) +
-                      " of " + std::to_string(mesh.positions.size()));
+                      " of " + std::to_string(mesh.positions_mm.size()));
         }
         corners.push_back(base + i);
         box.grow(load(world[base + i], 0.0f));

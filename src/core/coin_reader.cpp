@@ -46,7 +46,7 @@ namespace {
 // Distinct unknown fields the lenient pass removes before it gives up on a file.
 constexpr int kMaxDroppedFields = 64;
 
-void warn(const LoadOptions& options, const std::string& message) {
+void warn(const LoadParams& options, const std::string& message) {
   if (options.on_warning) options.on_warning(message);
 }
 
@@ -176,7 +176,7 @@ class ShapeCollector {
     for (const SoPrimitiveVertex* v : corners) {
       SbVec3f p;
       current_.model.multVecMatrix(v->getPoint(), p);
-      current_.soup.positions.push_back(to_glm(p));
+      current_.soup.positions_mm.push_back(to_glm(p));
       if (current_.coin_normals) {
         SbVec3f n;
         current_.normal_matrix.multDirMatrix(v->getNormal(), n);
@@ -198,10 +198,10 @@ class ShapeCollector {
 
   SoCallbackAction::Response end_shape() {
     if (error) return SoCallbackAction::ABORT;
-    if (!active_ || current_.soup.positions.empty()) return SoCallbackAction::CONTINUE;
+    if (!active_ || current_.soup.positions_mm.empty()) return SoCallbackAction::CONTINUE;
     active_ = false;
-    for (std::size_t i = 0; i < current_.soup.positions.size(); ++i) {
-      const glm::vec3 p = current_.soup.positions[i];
+    for (std::size_t i = 0; i < current_.soup.positions_mm.size(); ++i) {
+      const glm::vec3 p = current_.soup.positions_mm[i];
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z)) {
         error.emplace(file_, 0,
                       "shape " + current_.name + ": triangle " + std::to_string(i / 3) +
@@ -264,7 +264,7 @@ std::string describe(const CoinSession::ReadError& error, const std::string& tex
 
 // Reads the scene graph, removing unknown fields and trying again where the options allow it.
 SoSeparator* read_scene_graph(CoinSession& coin, std::string text, const std::filesystem::path& file,
-                              const LoadOptions& options) {
+                              const LoadParams& options) {
   for (int dropped = 0;; ++dropped) {
     coin.read_errors.clear();
     SoInput input;
@@ -293,8 +293,7 @@ SoSeparator* read_scene_graph(CoinSession& coin, std::string text, const std::fi
 
 }  // namespace
 
-Scene read_coin_model(const std::string& text, const std::filesystem::path& file,
-                      const LoadOptions& options) {
+Scene read_coin_model(const std::string& text, const std::filesystem::path& file, const LoadParams& options) {
   CoinSession coin;
   SoSeparator* root = read_scene_graph(coin, text, file, options);
   root->ref();

@@ -10,6 +10,6 @@ namespace palpate::detail {
 
 // Reads `text` (the file's decompressed content) with SoDB::readAll, then collects the world-space
 // triangles of every drawn shape with an SoCallbackAction: one object per shape instance.
-Scene read_coin_model(const std::string& text, const std::filesystem::path& file, const LoadOptions& options);
+Scene read_coin_model(const std::string& text, const std::filesystem::path& file, const LoadParams& options);
 
 }  // namespace palpate::detail

@@ -17,7 +17,7 @@ float dent_slope(float d, float depth_mm, float sigma_mm) noexcept {
 float dent_displacement(glm::vec3 v, std::span<const Dent> dents) noexcept {
   float sum = 0.0f;
   for (const Dent& dent : dents) {
-    const glm::vec3 offset = v - dent.center;
+    const glm::vec3 offset = v - dent.center_mm;
     const float d2 = glm::dot(offset, offset);
     const float cutoff = dent_cutoff_sigmas * dent.sigma_mm;
     if (d2 >= cutoff * cutoff) continue;
@@ -33,7 +33,7 @@ glm::vec3 displaced_position(glm::vec3 v, glm::vec3 n, std::span<const Dent> den
 glm::vec3 perturbed_normal(glm::vec3 n0, glm::vec3 v, std::span<const Dent> dents) noexcept {
   glm::vec3 n = n0;
   for (const Dent& dent : dents) {
-    const glm::vec3 to_contact = dent.center - v;  // VC
+    const glm::vec3 to_contact = dent.center_mm - v;  // VC
     const float d2 = glm::dot(to_contact, to_contact);
     const float cutoff = dent_cutoff_sigmas * dent.sigma_mm;
     if (d2 >= cutoff * cutoff) continue;
@@ -53,12 +53,12 @@ void deform_mesh(const Mesh& mesh, const glm::mat4& transform, std::span<const D
   const glm::mat3 rotation(transform);
   out.indices = mesh.indices;
   out.colors = mesh.colors;
-  out.positions.resize(mesh.positions.size());
-  out.normals.resize(mesh.positions.size());
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    const glm::vec3 v = glm::vec3(transform * glm::vec4(mesh.positions[i], 1.0f));
+  out.positions_mm.resize(mesh.positions_mm.size());
+  out.normals.resize(mesh.positions_mm.size());
+  for (std::size_t i = 0; i < mesh.positions_mm.size(); ++i) {
+    const glm::vec3 v = glm::vec3(transform * glm::vec4(mesh.positions_mm[i], 1.0f));
     const glm::vec3 n = glm::normalize(rotation * mesh.normals[i]);
-    out.positions[i] = displaced_position(v, n, dents);
+    out.positions_mm[i] = displaced_position(v, n, dents);
   }
   compute_vertex_normals(out);
 }

@@ -77,7 +77,7 @@ std::size_t flip_toward_delaunay(Mesh& mesh, std::vector<std::uint32_t>& opposit
                                  double max_fold_rad) {
   std::vector<std::uint32_t>& v = mesh.indices;
   const double min_cos = std::cos(max_fold_rad);
-  const auto at = [&](std::uint32_t vertex) { return glm::dvec3(mesh.positions[vertex]) - centre; };
+  const auto at = [&](std::uint32_t vertex) { return glm::dvec3(mesh.positions_mm[vertex]) - centre; };
 
   std::vector<std::uint32_t> pending;
   pending.reserve(v.size());

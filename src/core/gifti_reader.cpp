@@ -158,7 +158,7 @@ Scene read_gifti_model(const std::string& content, bool was_gzip, const std::fil
 
   Mesh mesh;
   const long long vertex_count = points->dims[0];
-  mesh.positions.resize(static_cast<std::size_t>(vertex_count));
+  mesh.positions_mm.resize(static_cast<std::size_t>(vertex_count));
   for (long long v = 0; v < vertex_count; ++v) {
     for (int axis = 0; axis < 3; ++axis) {
       double value = 0.0;
@@ -176,7 +176,7 @@ Scene read_gifti_model(const std::string& content, bool was_gzip, const std::fil
             file, 0,
             "GIfTI POINTSET: vertex " + std::to_string(v) + " has a non-finite coordinate (NaN or Inf)");
       }
-      mesh.positions[static_cast<std::size_t>(v)][axis] = static_cast<float>(value);
+      mesh.positions_mm[static_cast<std::size_t>(v)][axis] = static_cast<float>(value);
     }
   }
   const long long triangle_count = triangles->dims[0];
@@ -203,7 +203,7 @@ Scene read_gifti_model(const std::string& content, bool was_gzip, const std::fil
   }
   // giftiio leaves an array it could not inflate zeroed (and says so only on stderr).
   const Bounds extent = bounds(mesh);
-  if (extent.size() == glm::vec3(0.0f)) {
+  if (extent.size_mm() == glm::vec3(0.0f)) {
     throw Error(file, 0, "GIfTI POINTSET: all vertices are at one point (its data array did not decode?)");
   }
   for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {

@@ -40,7 +40,7 @@ constexpr std::string_view kSupported =
     ".wrl .wrz .vrml .iv (Coin), .obj .ply .stl .off .gltf .glb .x3d (assimp), .gii (giftiio), each also "
     "gzipped";
 
-Scene read_model(const std::filesystem::path& file, const LoadOptions& options) {
+Scene read_model(const std::filesystem::path& file, const LoadParams& options) {
   const std::string extension = format_extension(file);
   if (one_of(extension, {".nii", ".hdr", ".img", ".mgz", ".mgh", ".nrrd", ".mha", ".mhd"})) {
     if (!std::filesystem::exists(file)) throw Error(file, 0, "no such file");
@@ -80,10 +80,10 @@ Scene read_model(const std::filesystem::path& file, const LoadOptions& options) 
 }  // namespace
 
 Scene load_model(const std::filesystem::path& file) {
-  return load_model(file, LoadOptions{});
+  return load_model(file, LoadParams{});
 }
 
-Scene load_model(const std::filesystem::path& file, const LoadOptions& options) {
+Scene load_model(const std::filesystem::path& file, const LoadParams& options) {
   Scene scene = read_model(file, options);
   if (scene.triangle_count() == 0) {
     throw Error(file, 0,
@@ -101,10 +101,10 @@ Scene load_model(const std::filesystem::path& file, const LoadOptions& options) 
 }
 
 Mesh load_mesh(const std::filesystem::path& file) {
-  return load_mesh(file, LoadOptions{});
+  return load_mesh(file, LoadParams{});
 }
 
-Mesh load_mesh(const std::filesystem::path& file, const LoadOptions& options) {
+Mesh load_mesh(const std::filesystem::path& file, const LoadParams& options) {
   Scene scene = load_model(file, options);
   if (scene.objects.size() == 1) return std::move(scene.objects.front().mesh);
   Mesh merged;

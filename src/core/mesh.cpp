@@ -5,26 +5,27 @@
 #include <string>
 
 #include "palpate/core/error.hpp"
+#include "palpate/core/finite.hpp"
 
 namespace palpate {
 
 Bounds bounds(const Mesh& mesh) noexcept {
-  if (mesh.positions.empty()) return {};
-  Bounds b{mesh.positions.front(), mesh.positions.front()};
-  for (const glm::vec3& p : mesh.positions) {
-    b.min = glm::min(b.min, p);
-    b.max = glm::max(b.max, p);
+  if (mesh.positions_mm.empty()) return {};
+  Bounds b{mesh.positions_mm.front(), mesh.positions_mm.front()};
+  for (const glm::vec3& p : mesh.positions_mm) {
+    b.min_mm = glm::min(b.min_mm, p);
+    b.max_mm = glm::max(b.max_mm, p);
   }
   return b;
 }
 
 void compute_vertex_normals(Mesh& mesh) {
-  mesh.normals.assign(mesh.positions.size(), glm::vec3(0.0f));
+  mesh.normals.assign(mesh.positions_mm.size(), glm::vec3(0.0f));
   for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
     const std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
     // The cross product's length is twice the area: summing it weights each face by area.
     const glm::vec3 face =
-        glm::cross(mesh.positions[b] - mesh.positions[a], mesh.positions[c] - mesh.positions[a]);
+        glm::cross(mesh.positions_mm[b] - mesh.positions_mm[a], mesh.positions_mm[c] - mesh.positions_mm[a]);
     mesh.normals[a] += face;
     mesh.normals[b] += face;
     mesh.normals[c] += face;
@@ -36,14 +37,14 @@ void compute_vertex_normals(Mesh& mesh) {
 }
 
 void append_mesh(Mesh& into, const Mesh& part, glm::vec3 fill_color) {
-  const auto offset = static_cast<std::uint32_t>(into.positions.size());
+  const auto offset = static_cast<std::uint32_t>(into.positions_mm.size());
   const bool colored = !into.colors.empty() || !part.colors.empty();
-  if (colored && into.colors.empty()) into.colors.assign(into.positions.size(), fill_color);
-  into.positions.insert(into.positions.end(), part.positions.begin(), part.positions.end());
+  if (colored && into.colors.empty()) into.colors.assign(into.positions_mm.size(), fill_color);
+  into.positions_mm.insert(into.positions_mm.end(), part.positions_mm.begin(), part.positions_mm.end());
   into.normals.insert(into.normals.end(), part.normals.begin(), part.normals.end());
   if (colored) {
     if (part.colors.empty()) {
-      into.colors.insert(into.colors.end(), part.positions.size(), fill_color);
+      into.colors.insert(into.colors.end(), part.positions_mm.size(), fill_color);
     } else {
       into.colors.insert(into.colors.end(), part.colors.begin(), part.colors.end());
     }
@@ -52,37 +53,31 @@ void append_mesh(Mesh& into, const Mesh& part, glm::vec3 fill_color) {
   for (std::uint32_t i : part.indices) into.indices.push_back(i + offset);
 }
 
-namespace {
-
-bool finite(glm::vec3 v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
-}  // namespace
+namespace {}  // namespace
 
 void validate_mesh(const Mesh& mesh, const std::string& what) {
   if (mesh.indices.size() % 3 != 0) {
     throw Error(what + ": index count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3");
   }
-  if (mesh.normals.size() != mesh.positions.size()) {
+  if (mesh.normals.size() != mesh.positions_mm.size()) {
     throw Error(what + ": " + std::to_string(mesh.normals.size()) + " normals for " +
-                std::to_string(mesh.positions.size()) + " positions");
+                std::to_string(mesh.positions_mm.size()) + " positions");
   }
-  if (!mesh.colors.empty() && mesh.colors.size() != mesh.positions.size()) {
+  if (!mesh.colors.empty() && mesh.colors.size() != mesh.positions_mm.size()) {
     throw Error(what + ": " + std::to_string(mesh.colors.size()) + " colors for " +
-                std::to_string(mesh.positions.size()) + " positions");
+                std::to_string(mesh.positions_mm.size()) + " positions");
   }
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-    if (!finite(mesh.positions[i])) {
+  for (std::size_t i = 0; i < mesh.positions_mm.size(); ++i) {
+    if (!is_finite(mesh.positions_mm[i])) {
       throw Error(what + ": vertex " + std::to_string(i) + " has a non-finite coordinate (NaN or Inf)");
     }
-    if (!finite(mesh.normals[i])) throw Error(what + ": normal " + std::to_string(i) + " is not finite");
+    if (!is_finite(mesh.normals[i])) throw Error(what + ": normal " + std::to_string(i) + " is not finite");
   }
   for (std::size_t i = 0; i < mesh.indices.size(); ++i) {
-    if (mesh.indices[i] >= mesh.positions.size()) {
+    if (mesh.indices[i] >= mesh.positions_mm.size()) {
       throw Error(what + ": triangle " + std::to_string(i / 3) + " uses vertex " +
                   std::to_string(mesh.indices[i]) + " but there are only " +
-                  std::to_string(mesh.positions.size()));
+                  std::to_string(mesh.positions_mm.size()));
     }
   }
 }

@@ -9,23 +9,23 @@ namespace palpate {
 
 glm::vec3 OrbitCamera::eye() const noexcept {
   // yaw 0 puts the eye on +y looking back toward -y; +z is up.
-  const glm::vec3 from_target{std::sin(yaw) * std::cos(pitch), std::cos(yaw) * std::cos(pitch),
-                              std::sin(pitch)};
-  return target + distance_mm * from_target;
+  const glm::vec3 from_target{std::sin(yaw_rad) * std::cos(pitch_rad),
+                              std::cos(yaw_rad) * std::cos(pitch_rad), std::sin(pitch_rad)};
+  return target_mm + distance_mm * from_target;
 }
 
 glm::mat4 OrbitCamera::view() const noexcept {
-  return glm::lookAt(eye(), target, glm::vec3(0.0f, 0.0f, 1.0f));
+  return glm::lookAt(eye(), target_mm, glm::vec3(0.0f, 0.0f, 1.0f));
 }
 
 glm::mat4 OrbitCamera::projection(float aspect) const noexcept {
   const float near_mm = std::max(0.1f, distance_mm * 0.05f);
-  return glm::perspective(fov_y, aspect, near_mm, distance_mm * 20.0f);
+  return glm::perspective(fov_y_rad, aspect, near_mm, distance_mm * 20.0f);
 }
 
 void OrbitCamera::orbit(float delta_yaw, float delta_pitch) noexcept {
-  yaw += delta_yaw;
-  pitch = std::clamp(pitch + delta_pitch, -1.55f, 1.55f);
+  yaw_rad += delta_yaw;
+  pitch_rad = std::clamp(pitch_rad + delta_pitch, -1.55f, 1.55f);
 }
 
 void OrbitCamera::zoom(float factor) noexcept {
@@ -42,14 +42,14 @@ OrbitCamera::Ray OrbitCamera::ray_through(glm::vec2 pixel, glm::vec2 viewport_si
   return {eye(), glm::normalize(b - a)};
 }
 
-OrbitCamera frame_bounds(const Bounds& box, float yaw, float pitch, float fov_y) noexcept {
+OrbitCamera frame_bounds(const Bounds& box, float yaw_rad, float pitch_rad, float fov_y_rad) noexcept {
   OrbitCamera camera;
-  camera.target = box.center();
-  camera.yaw = yaw;
-  camera.pitch = pitch;
-  camera.fov_y = fov_y;
-  const float radius = std::max(1.0f, 0.5f * glm::length(box.size()));
-  camera.distance_mm = radius / std::sin(fov_y * 0.5f) * 1.05f;
+  camera.target_mm = box.center_mm();
+  camera.yaw_rad = yaw_rad;
+  camera.pitch_rad = pitch_rad;
+  camera.fov_y_rad = fov_y_rad;
+  const float radius = std::max(1.0f, 0.5f * glm::length(box.size_mm()));
+  camera.distance_mm = radius / std::sin(fov_y_rad * 0.5f) * 1.05f;
   return camera;
 }
 

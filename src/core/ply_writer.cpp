@@ -38,7 +38,7 @@ void write_ply(const Mesh& mesh, const std::filesystem::path& file) {
       std::to_string(mesh.triangle_count()) + "\nproperty list uchar uint vertex_indices\nend_header\n";
   out.reserve(out.size() + mesh.vertex_count() * (colored ? 27 : 24) + mesh.triangle_count() * 13);
   for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
-    for (int axis = 0; axis < 3; ++axis) put_f32(out, mesh.positions[v][axis]);
+    for (int axis = 0; axis < 3; ++axis) put_f32(out, mesh.positions_mm[v][axis]);
     for (int axis = 0; axis < 3; ++axis) put_f32(out, mesh.normals[v][axis]);
     if (colored) {
       for (int channel = 0; channel < 3; ++channel) put_u8(out, mesh.colors[v][channel]);

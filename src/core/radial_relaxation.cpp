@@ -42,9 +42,9 @@ namespace {
 bool has_sharp_corner(const Mesh& mesh, std::size_t t) {
   constexpr double cos2_limit = 0.978 * 0.978;
   for (int k = 0; k < 3; ++k) {
-    const glm::dvec3 p(mesh.positions[mesh.indices[t + k]]);
-    const glm::dvec3 a = glm::dvec3(mesh.positions[mesh.indices[t + (k + 1) % 3]]) - p;
-    const glm::dvec3 b = glm::dvec3(mesh.positions[mesh.indices[t + (k + 2) % 3]]) - p;
+    const glm::dvec3 p(mesh.positions_mm[mesh.indices[t + k]]);
+    const glm::dvec3 a = glm::dvec3(mesh.positions_mm[mesh.indices[t + (k + 1) % 3]]) - p;
+    const glm::dvec3 b = glm::dvec3(mesh.positions_mm[mesh.indices[t + (k + 2) % 3]]) - p;
     const double d = glm::dot(a, b);
     if (d > 0.0 && d * d > cos2_limit * glm::dot(a, a) * glm::dot(b, b)) return true;
   }
@@ -61,7 +61,7 @@ std::vector<glm::dvec3> targets(const Mesh& mesh, const Neighbours& n, const std
     for (std::uint32_t v = 0; v < mesh.vertex_count(); ++v) {
       if (!selected[v]) continue;
       for (std::uint32_t i = n.start[v]; i < n.start[v + 1]; ++i)
-        target[v] += glm::dvec3(mesh.positions[n.list[i]]);
+        target[v] += glm::dvec3(mesh.positions_mm[n.list[i]]);
       target[v] /= double(n.start[v + 1] - n.start[v]);
     }
     return target;
@@ -70,13 +70,13 @@ std::vector<glm::dvec3> targets(const Mesh& mesh, const Neighbours& n, const std
   for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
     const std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
     if (!(selected[a] || selected[b] || selected[c])) continue;
-    const glm::dvec3 pa(mesh.positions[a]), pb(mesh.positions[b]), pc(mesh.positions[c]);
+    const glm::dvec3 pa(mesh.positions_mm[a]), pb(mesh.positions_mm[b]), pc(mesh.positions_mm[c]);
     const double area = glm::length(glm::cross(pb - pa, pc - pa));
     const glm::dvec3 centroid = (pa + pb + pc) / 3.0;
     for (std::uint32_t v : {a, b, c}) target[v] += area * centroid, weight[v] += area;
   }
   for (std::uint32_t v = 0; v < mesh.vertex_count(); ++v) {
-    if (selected[v]) target[v] = weight[v] > 0.0 ? target[v] / weight[v] : glm::dvec3(mesh.positions[v]);
+    if (selected[v]) target[v] = weight[v] > 0.0 ? target[v] / weight[v] : glm::dvec3(mesh.positions_mm[v]);
   }
   return target;
 }
@@ -87,7 +87,7 @@ void smooth(Mesh& mesh, glm::dvec3 centre, const RadialFunction& radius, const s
             bool area_weighted) {
   compute_vertex_normals(mesh);
   const std::vector<glm::dvec3> target = targets(mesh, neighbours(mesh), selected, area_weighted);
-  const std::vector<glm::vec3> previous = mesh.positions;
+  const std::vector<glm::vec3> previous = mesh.positions_mm;
   std::vector<char> moved(mesh.vertex_count(), 0);
   for (std::uint32_t v = 0; v < mesh.vertex_count(); ++v) {
     if (!selected[v]) continue;
@@ -95,7 +95,7 @@ void smooth(Mesh& mesh, glm::dvec3 centre, const RadialFunction& radius, const s
     const glm::dvec3 normal(mesh.normals[v]);
     const glm::dvec3 move = 0.5 * (mean - p - glm::dot(mean - p, normal) * normal);
     const glm::dvec3 w = glm::normalize(p + move - centre);
-    mesh.positions[v] = glm::vec3(centre + radius(w) * w);
+    mesh.positions_mm[v] = glm::vec3(centre + radius(w) * w);
     moved[v] = 1;
   }
   // Until no triangle is turned over (at worst every move is undone).
@@ -105,8 +105,8 @@ void smooth(Mesh& mesh, glm::dvec3 centre, const RadialFunction& radius, const s
     for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
       const std::uint32_t a = mesh.indices[t], b = mesh.indices[t + 1], c = mesh.indices[t + 2];
       if ((moved[a] | moved[b] | moved[c]) == 0 ||
-          faces_away(glm::dvec3(mesh.positions[a]) - centre, glm::dvec3(mesh.positions[b]) - centre,
-                     glm::dvec3(mesh.positions[c]) - centre)) {
+          faces_away(glm::dvec3(mesh.positions_mm[a]) - centre, glm::dvec3(mesh.positions_mm[b]) - centre,
+                     glm::dvec3(mesh.positions_mm[c]) - centre)) {
         continue;
       }
       for (std::uint32_t v : {a, b, c}) {
@@ -114,7 +114,7 @@ void smooth(Mesh& mesh, glm::dvec3 centre, const RadialFunction& radius, const s
       }
     }
     for (std::uint32_t v : undo) {
-      mesh.positions[v] = previous[v];
+      mesh.positions_mm[v] = previous[v];
       moved[v] = 0;
     }
   } while (!undo.empty());

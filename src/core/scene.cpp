@@ -18,9 +18,9 @@ std::size_t Scene::triangle_count() const noexcept {
 
 Bounds world_bounds(const SceneObject& object) noexcept {
   Bounds b;
-  for (std::size_t i = 0; i < object.mesh.positions.size(); ++i) {
-    const glm::vec3 w = glm::vec3(object.transform * glm::vec4(object.mesh.positions[i], 1.0f));
-    b = i == 0 ? Bounds{w, w} : Bounds{glm::min(b.min, w), glm::max(b.max, w)};
+  for (std::size_t i = 0; i < object.mesh.positions_mm.size(); ++i) {
+    const glm::vec3 w = glm::vec3(object.transform * glm::vec4(object.mesh.positions_mm[i], 1.0f));
+    b = i == 0 ? Bounds{w, w} : Bounds{glm::min(b.min_mm, w), glm::max(b.max_mm, w)};
   }
   return b;
 }
@@ -29,9 +29,9 @@ Bounds world_bounds(const Scene& scene) noexcept {
   Bounds b;
   bool first = true;
   for (const SceneObject& object : scene.objects) {
-    if (object.mesh.positions.empty()) continue;
+    if (object.mesh.positions_mm.empty()) continue;
     const Bounds o = world_bounds(object);
-    b = first ? o : Bounds{glm::min(b.min, o.min), glm::max(b.max, o.max)};
+    b = first ? o : Bounds{glm::min(b.min_mm, o.min_mm), glm::max(b.max_mm, o.max_mm)};
     first = false;
   }
   return b;

@@ -52,23 +52,23 @@ Mesh make_sphere(float radius_mm, std::size_t vertices) {
   }
   const std::size_t rings = sizes.size();
   Mesh mesh;
-  mesh.positions.reserve(vertices);
+  mesh.positions_mm.reserve(vertices);
   std::vector<std::uint32_t> first(rings);
   std::vector<float> phase(rings);
-  mesh.positions.push_back({0.0f, 0.0f, radius_mm});  // north pole, index 0
+  mesh.positions_mm.push_back({0.0f, 0.0f, radius_mm});  // north pole, index 0
   for (std::size_t r = 0; r < rings; ++r) {
     const float theta = pi * float(r + 1) / float(rings + 1);
-    first[r] = static_cast<std::uint32_t>(mesh.positions.size());
+    first[r] = static_cast<std::uint32_t>(mesh.positions_mm.size());
     // Half a step of stagger between neighbouring rings avoids long slivers where counts match.
     phase[r] = (r % 2 == 0 ? 0.0f : 0.5f) * 2.0f * pi / float(sizes[r]);
     for (std::size_t k = 0; k < sizes[r]; ++k) {
       const float phi = phase[r] + 2.0f * pi * float(k) / float(sizes[r]);
-      mesh.positions.push_back(radius_mm * glm::vec3(std::sin(theta) * std::cos(phi),
-                                                     std::sin(theta) * std::sin(phi), std::cos(theta)));
+      mesh.positions_mm.push_back(radius_mm * glm::vec3(std::sin(theta) * std::cos(phi),
+                                                        std::sin(theta) * std::sin(phi), std::cos(theta)));
     }
   }
-  const auto south = static_cast<std::uint32_t>(mesh.positions.size());
-  mesh.positions.push_back({0.0f, 0.0f, -radius_mm});
+  const auto south = static_cast<std::uint32_t>(mesh.positions_mm.size());
+  mesh.positions_mm.push_back({0.0f, 0.0f, -radius_mm});
 
   auto& tri = mesh.indices;
   tri.reserve(6 * (vertices - 2));
@@ -113,7 +113,7 @@ Mesh make_sphere(float radius_mm, std::size_t vertices) {
 Mesh make_bumpy_sphere(float radius_mm, float bump_mm, std::size_t triangles) {
   const std::size_t even = std::max<std::size_t>(6, (triangles + 1) / 2 * 2);
   Mesh mesh = make_sphere(1.0f, even / 2 + 2);
-  for (glm::vec3& p : mesh.positions) {
+  for (glm::vec3& p : mesh.positions_mm) {
     // A product of sines in the direction's coordinates: smooth, in [-1, 1], bumps ~12 degrees apart.
     const float k = 15.0f;
     const float bump = std::sin(k * p.x) * std::sin(k * p.y) * std::sin(k * p.z + 0.7f);
@@ -127,7 +127,7 @@ Mesh make_box(glm::vec3 size_mm) {
   const glm::vec3 h = size_mm * 0.5f;
   Mesh mesh;
   for (int i = 0; i < 8; ++i)
-    mesh.positions.push_back({i & 1 ? h.x : -h.x, i & 2 ? h.y : -h.y, i & 4 ? h.z : -h.z});
+    mesh.positions_mm.push_back({i & 1 ? h.x : -h.x, i & 2 ? h.y : -h.y, i & 4 ? h.z : -h.z});
   mesh.indices = {0, 2, 1, 1, 2, 3,   // -z
                   4, 5, 6, 5, 7, 6,   // +z
                   0, 1, 4, 1, 5, 4,   // -y
@@ -143,7 +143,7 @@ Mesh make_grid(float size_mm, std::size_t cells) {
   const std::size_t n = cells + 1;
   for (std::size_t j = 0; j < n; ++j) {
     for (std::size_t i = 0; i < n; ++i) {
-      mesh.positions.push_back(
+      mesh.positions_mm.push_back(
           {size_mm * (float(i) / float(cells) - 0.5f), size_mm * (float(j) / float(cells) - 0.5f), 0.0f});
       mesh.normals.push_back({0.0f, 0.0f, 1.0f});
     }

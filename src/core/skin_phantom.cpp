@@ -121,7 +121,7 @@ Mesh make_skin_phantom(std::size_t vertices) {
                 " vertices, got " + std::to_string(vertices));
   }
   Mesh mesh = make_sphere(1.0f, vertices);
-  for (glm::vec3& p : mesh.positions) {
+  for (glm::vec3& p : mesh.positions_mm) {
     const glm::dvec3 w = glm::normalize(glm::dvec3(p));
     p = glm::vec3(skin_centre + skin_radius(w) * w);
   }

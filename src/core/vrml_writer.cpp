@@ -30,7 +30,7 @@ std::vector<SbVec3f> to_coin(const std::vector<glm::vec3>& values) {
 void write_vrml97(const Mesh& mesh, const std::filesystem::path& file) {
   CoinSession coin;
   auto* coordinates = new SoVRMLCoordinate;
-  const std::vector<SbVec3f> points = to_coin(mesh.positions);
+  const std::vector<SbVec3f> points = to_coin(mesh.positions_mm);
   coordinates->point.setValues(0, static_cast<int>(points.size()), points.data());
   auto* normals = new SoVRMLNormal;
   const std::vector<SbVec3f> vectors = to_coin(mesh.normals);

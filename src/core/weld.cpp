@@ -98,21 +98,21 @@ std::vector<glm::vec3> crease_normals(const std::vector<glm::vec3>& positions,
 }  // namespace
 
 Mesh mesh_from_soup(const TriangleSoup& soup, float crease_angle_rad) {
-  const std::size_t corners = soup.positions.size() / 3 * 3;
+  const std::size_t corners = soup.positions_mm.size() / 3 * 3;
   std::vector<glm::vec3> distinct;
-  const std::vector<std::uint32_t> position_id = weld_ids(soup.positions, distinct);
+  const std::vector<std::uint32_t> position_id = weld_ids(soup.positions_mm, distinct);
 
   std::vector<glm::vec3> normals;
   if (soup.normals.empty()) {
-    normals = crease_normals(soup.positions, position_id, distinct.size(), crease_angle_rad);
+    normals = crease_normals(soup.positions_mm, position_id, distinct.size(), crease_angle_rad);
   } else {
     normals.resize(corners);
     for (std::size_t c = 0; c < corners; ++c) {
       normals[c] = unit_or_zero(soup.normals[c]);
       if (normals[c] == glm::vec3(0.0f)) {  // a zero normal in the file: use the face's own
         const std::size_t t = c / 3 * 3;
-        normals[c] = unit_or_zero(
-            glm::cross(soup.positions[t + 1] - soup.positions[t], soup.positions[t + 2] - soup.positions[t]));
+        normals[c] = unit_or_zero(glm::cross(soup.positions_mm[t + 1] - soup.positions_mm[t],
+                                             soup.positions_mm[t + 2] - soup.positions_mm[t]));
       }
     }
   }
@@ -132,8 +132,8 @@ Mesh mesh_from_soup(const TriangleSoup& soup, float crease_angle_rad) {
       v = next_vertex[v];
     }
     if (v == kNone) {
-      v = static_cast<std::uint32_t>(mesh.positions.size());
-      mesh.positions.push_back(distinct[position_id[c]]);
+      v = static_cast<std::uint32_t>(mesh.positions_mm.size());
+      mesh.positions_mm.push_back(distinct[position_id[c]]);
       mesh.normals.push_back(n);
       if (colored) mesh.colors.push_back(color);
       next_vertex.push_back(first_vertex[position_id[c]]);
@@ -146,14 +146,15 @@ Mesh mesh_from_soup(const TriangleSoup& soup, float crease_angle_rad) {
 
 void weld_identical(Mesh& mesh) {
   std::vector<glm::vec3> distinct;
-  const std::vector<std::uint32_t> position_id = weld_ids(mesh.positions, distinct);
-  if (distinct.size() == mesh.positions.size()) return;
-  const bool has_normals = mesh.normals.size() == mesh.positions.size();
+  const std::vector<std::uint32_t> position_id = weld_ids(mesh.positions_mm, distinct);
+  if (distinct.size() == mesh.positions_mm.size()) return;
+  const bool has_normals = mesh.normals.size() == mesh.positions_mm.size();
   const bool colored = !mesh.colors.empty();
   constexpr std::uint32_t kNone = 0xffffffffu;
-  std::vector<std::uint32_t> first_vertex(distinct.size(), kNone), next_vertex, merged(mesh.positions.size());
+  std::vector<std::uint32_t> first_vertex(distinct.size(), kNone), next_vertex,
+      merged(mesh.positions_mm.size());
   Mesh out;
-  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+  for (std::size_t i = 0; i < mesh.positions_mm.size(); ++i) {
     const std::uint32_t id = position_id[i];
     std::uint32_t v = first_vertex[id];
     while (v != kNone && !((!has_normals || position_key(out.normals[v]) == position_key(mesh.normals[i])) &&
@@ -161,8 +162,8 @@ void weld_identical(Mesh& mesh) {
       v = next_vertex[v];
     }
     if (v == kNone) {
-      v = static_cast<std::uint32_t>(out.positions.size());
-      out.positions.push_back(mesh.positions[i]);
+      v = static_cast<std::uint32_t>(out.positions_mm.size());
+      out.positions_mm.push_back(mesh.positions_mm[i]);
       if (has_normals) out.normals.push_back(mesh.normals[i]);
       if (colored) out.colors.push_back(mesh.colors[i]);
       next_vertex.push_back(first_vertex[id]);
@@ -171,21 +172,21 @@ void weld_identical(Mesh& mesh) {
     merged[i] = v;
   }
   for (std::uint32_t& index : mesh.indices) index = merged[index];
-  mesh.positions = std::move(out.positions);
+  mesh.positions_mm = std::move(out.positions_mm);
   mesh.normals = std::move(out.normals);
   mesh.colors = std::move(out.colors);
 }
 
 void weld_positions(Mesh& mesh) {
   std::vector<glm::vec3> distinct;
-  const std::vector<std::uint32_t> id_of = weld_ids(mesh.positions, distinct);
-  if (distinct.size() == mesh.positions.size() && !mesh.normals.empty()) return;  // nothing to merge
+  const std::vector<std::uint32_t> id_of = weld_ids(mesh.positions_mm, distinct);
+  if (distinct.size() == mesh.positions_mm.size() && !mesh.normals.empty()) return;  // nothing to merge
 
-  const bool had_normals = mesh.normals.size() == mesh.positions.size();
+  const bool had_normals = mesh.normals.size() == mesh.positions_mm.size();
   std::vector<glm::vec3> normals(distinct.size()), colors;
   std::vector<bool> seen(distinct.size(), false), agree(distinct.size(), had_normals);
   if (!mesh.colors.empty()) colors.resize(distinct.size());
-  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+  for (std::size_t v = 0; v < mesh.positions_mm.size(); ++v) {
     const std::uint32_t id = id_of[v];
     if (!seen[id]) {
       seen[id] = true;
@@ -196,7 +197,7 @@ void weld_positions(Mesh& mesh) {
     }
   }
   for (std::uint32_t& i : mesh.indices) i = id_of[i];
-  mesh.positions = std::move(distinct);
+  mesh.positions_mm = std::move(distinct);
   mesh.colors = std::move(colors);
   const bool all_agree = std::all_of(agree.begin(), agree.end(), [](bool a) { return a; });
   if (!all_agree) {

@@ -10,9 +10,9 @@ namespace palpate::detail {
 
 // Triangle corners as a shape produced them: three per triangle, counter-clockwise, world space.
 struct TriangleSoup {
-  std::vector<glm::vec3> positions;
-  std::vector<glm::vec3> normals;  // one per corner, or empty: then computed (see mesh_from_soup)
-  std::vector<glm::vec3> colors;   // one per corner, or empty
+  std::vector<glm::vec3> positions_mm;  // three per triangle
+  std::vector<glm::vec3> normals;       // one per corner, or empty: then computed (see mesh_from_soup)
+  std::vector<glm::vec3> colors;        // one per corner, or empty
 };
 
 // One vertex per distinct (position, normal, colour), compared bitwise, so a closed surface stays

@@ -112,7 +112,7 @@ DeformBlockData make_deform_block_data(std::span<const Dent> dents) noexcept {
     const Dent& dent = dents[i];
     const float sigma2 = dent.sigma_mm * dent.sigma_mm;
     const float cutoff = dent_cutoff_sigmas * dent.sigma_mm;
-    data.center_depth[i] = glm::vec4(dent.center, dent.depth_mm);
+    data.center_depth[i] = glm::vec4(dent.center_mm, dent.depth_mm);
     data.shape[i] = glm::vec4(cutoff * cutoff, 1.0f / (2.0f * sigma2), dent.depth_mm / sigma2, dent.sigma_mm);
   }
   data.count = static_cast<std::int32_t>(count);

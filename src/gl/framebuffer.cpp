@@ -30,7 +30,7 @@ GLuint make_renderbuffer(GLenum format, int samples, int width, int height) {
   return renderbuffer;
 }
 
-void check_complete(GLuint framebuffer, const FramebufferOptions& options) {
+void check_complete(GLuint framebuffer, const FramebufferParams& options) {
   const GLenum status = glCheckNamedFramebufferStatus(framebuffer, GL_FRAMEBUFFER);
   if (status != GL_FRAMEBUFFER_COMPLETE) {
     throw Error("framebuffer " + std::to_string(options.width) + "x" + std::to_string(options.height) +
@@ -41,7 +41,7 @@ void check_complete(GLuint framebuffer, const FramebufferOptions& options) {
 
 }  // namespace
 
-Framebuffer::Framebuffer(FramebufferOptions options) : options_(options) {
+Framebuffer::Framebuffer(FramebufferParams options) : options_(options) {
   if (options.width <= 0 || options.height <= 0) {
     throw Error("framebuffer: size must be positive, got " + std::to_string(options.width) + "x" +
                 std::to_string(options.height));

@@ -50,7 +50,7 @@ struct HeadlessContext::State {
 namespace {
 
 // Initialises `display` and creates a core context on it; on failure returns why.
-std::string try_display(EGLDisplay display, const HeadlessContextOptions& options,
+std::string try_display(EGLDisplay display, const HeadlessContextParams& options,
                         HeadlessContext::State& out) {
   if (display == EGL_NO_DISPLAY) return "no display (" + egl_error_name(eglGetError()) + ")";
   EGLint major = 0, minor = 0;
@@ -97,7 +97,7 @@ std::string try_display(EGLDisplay display, const HeadlessContextOptions& option
 
 }  // namespace
 
-HeadlessContext::HeadlessContext(HeadlessContextOptions options) : state_(std::make_unique<State>()) {
+HeadlessContext::HeadlessContext(HeadlessContextParams options) : state_(std::make_unique<State>()) {
   std::vector<std::string> attempts;
   if (epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_device")) {
     EGLint count = 0;

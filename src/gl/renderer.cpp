@@ -119,9 +119,9 @@ struct GpuMesh {
   GLsizei index_count = 0;
 
   explicit GpuMesh(const Mesh& mesh) {
-    std::vector<glm::vec3> interleaved(2 * mesh.positions.size());
-    for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
-      interleaved[2 * i] = mesh.positions[i];
+    std::vector<glm::vec3> interleaved(2 * mesh.positions_mm.size());
+    for (std::size_t i = 0; i < mesh.positions_mm.size(); ++i) {
+      interleaved[2 * i] = mesh.positions_mm[i];
       interleaved[2 * i + 1] = mesh.normals[i];
     }
     glCreateVertexArrays(1, &vertex_array);
@@ -207,7 +207,7 @@ struct GpuProxy {
 
   static Mesh as_mesh(const OcclusionProxy& proxy) {
     Mesh mesh;
-    mesh.positions = proxy.corners;
+    mesh.positions_mm = proxy.corners;
     mesh.normals = proxy.directions;
     mesh.indices = proxy.indices;
     return mesh;
@@ -263,7 +263,7 @@ struct Renderer::State {
   // Adds a dent to the object's list; returns 1 when the dent is dropped (no such object, or its list
   // is full).
   int add_dent(int object_index, const Dent& dent) noexcept;
-  void render(const glm::mat4& view, const glm::mat4& projection, const DrawOptions& options,
+  void render(const glm::mat4& view, const glm::mat4& projection, const DrawParams& options,
               std::span<const Contact> probes, DrawResult& result);
   // Draws the object's proxy, padded by its dents, into its occlusion query (front faces, no colour, no
   // depth written) and starts conditional rendering on it. False, and nothing started, where the near
@@ -296,7 +296,8 @@ void Renderer::upload(const Scene& scene) {
     object->mesh = source.mesh;
     object->transform = source.transform;
     object->material = source.material;
-    object->clusters = cluster_triangles(object->mesh.indices, object->mesh.positions, triangles_per_cluster);
+    object->clusters =
+        cluster_triangles(object->mesh.indices, object->mesh.positions_mm, triangles_per_cluster);
     order_vertices_by_first_use(object->mesh);
     for (const TriangleCluster& cluster : object->clusters) {
       object->cluster_centers.push_back(glm::vec3(object->transform * glm::vec4(cluster.center, 1.0f)));
@@ -309,20 +310,19 @@ void Renderer::upload(const Scene& scene) {
   std::vector<std::size_t> order(objects.size());
   std::iota(order.begin(), order.end(), std::size_t{0});
   const auto volume = [&](std::size_t i) {
-    const glm::vec3 size = objects[i]->world_bounds.size();
+    const glm::vec3 size = objects[i]->world_bounds.size_mm();
     return size.x * size.y * size.z;
   };
   std::stable_sort(order.begin(), order.end(),
                    [&](std::size_t a, std::size_t b) { return volume(a) > volume(b); });
-  // Every visible object but the first drawn may be culled: those get a proxy.
-  bool first_visible = true;
+  // Every object but the first in drawing order may be culled (behind it, or behind another when it is
+  // hidden: visibility changes without an upload): those get a proxy.
   for (const std::size_t index : order) {
     RenderObject& object = *objects[index];
-    if (!object.material.visible) continue;
-    if (!std::exchange(first_visible, false)) {
+    if (index != order.front()) {
       const SceneObject& source = scene.objects[index];
-      std::vector<glm::vec3> world(source.mesh.positions.size());
-      std::transform(source.mesh.positions.begin(), source.mesh.positions.end(), world.begin(),
+      std::vector<glm::vec3> world(source.mesh.positions_mm.size());
+      std::transform(source.mesh.positions_mm.begin(), source.mesh.positions_mm.end(), world.begin(),
                      [&](glm::vec3 p) { return glm::vec3(source.transform * glm::vec4(p, 1.0f)); });
       if (auto proxy = make_occlusion_proxy(world, occlusion_margin_mm)) {
         object.proxy = std::make_unique<GpuProxy>(std::move(*proxy));
@@ -335,6 +335,18 @@ void Renderer::upload(const Scene& scene) {
 
 std::size_t Renderer::object_count() const noexcept {
   return state_->objects.size();
+}
+
+void Renderer::set_material(std::size_t object, const Material& material) {
+  if (object >= state_->objects.size()) {
+    throw Error("renderer: set_material: object " + std::to_string(object) + " out of range (" +
+                std::to_string(state_->objects.size()) + " uploaded)");
+  }
+  if (!(material.sigma_mm > 0.0f) || !std::isfinite(material.sigma_mm)) {
+    throw Error("renderer: set_material: sigma must be positive and finite, got " +
+                std::to_string(material.sigma_mm));
+  }
+  state_->objects[object]->material = material;
 }
 
 namespace {
@@ -351,7 +363,7 @@ struct FrameUniforms {
     view_projection = projection * view;
     eye = glm::vec3(eye_to_world[3]);
     light_direction = glm::normalize(eye_to_world_rotation * lighting.direction);
-    spot_position = glm::vec3(eye_to_world * glm::vec4(lighting.spot_position, 1.0f));
+    spot_position = glm::vec3(eye_to_world * glm::vec4(lighting.spot_position_mm, 1.0f));
     spot_direction = glm::normalize(eye_to_world_rotation * lighting.spot_direction);
     spot_cos = {std::cos(glm::radians(lighting.spot_outer_deg)),
                 std::cos(glm::radians(lighting.spot_inner_deg))};
@@ -383,7 +395,7 @@ void classify_clusters(RenderObject& object) {
       const Dent& dent = object.dents[static_cast<std::size_t>(i)];
       // A little slack on the sphere so that rounding can only ever send a cluster to the deforming side.
       const float reach = dent_cutoff_sigmas * dent.sigma_mm + cluster.radius * 1.001f + 1e-3f;
-      const glm::vec3 offset = object.cluster_centers[c] - dent.center;
+      const glm::vec3 offset = object.cluster_centers[c] - dent.center_mm;
       reached = glm::dot(offset, offset) < reach * reach;
     }
     (reached ? object.reached : object.unreached).add(cluster.first_index, cluster.index_count);
@@ -447,7 +459,7 @@ bool Renderer::State::begin_occlusion_test(RenderObject& object, const glm::mat4
 }
 
 DrawResult Renderer::draw(const glm::mat4& view, const glm::mat4& projection,
-                          std::span<const Contact> contacts, const DrawOptions& options) {
+                          std::span<const Contact> contacts, const DrawParams& options) {
   DrawResult result;
   for (auto& object : state_->objects) object->dent_count = 0;
   for (const Contact& contact : contacts) {
@@ -462,7 +474,7 @@ DrawResult Renderer::draw(const glm::mat4& view, const glm::mat4& projection,
 }
 
 DrawResult Renderer::draw(const glm::mat4& view, const glm::mat4& projection,
-                          std::span<const ObjectDent> dents, const DrawOptions& options) {
+                          std::span<const ObjectDent> dents, const DrawParams& options) {
   DrawResult result;
   for (auto& object : state_->objects) object->dent_count = 0;
   for (const ObjectDent& entry : dents) result.dropped_dents += state_->add_dent(entry.object, entry.dent);
@@ -477,7 +489,7 @@ int Renderer::State::add_dent(int object_index, const Dent& dent) noexcept {
   return 0;
 }
 
-void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection, const DrawOptions& options,
+void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection, const DrawParams& options,
                              std::span<const Contact> probes, DrawResult& result) {
   const GlStateGuard guard(DeformBlock::default_binding);
   set_draw_state();
@@ -513,8 +525,8 @@ void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection,
         object.naive = std::make_unique<NaiveBuffers>(object.mesh.vertex_count(), object.gpu->index_buffer,
                                                       object.gpu->color_buffer);
       }
-      const auto bytes = static_cast<GLsizeiptr>(object.deformed.positions.size() * sizeof(glm::vec3));
-      glNamedBufferSubData(object.naive->position_buffer, 0, bytes, object.deformed.positions.data());
+      const auto bytes = static_cast<GLsizeiptr>(object.deformed.positions_mm.size() * sizeof(glm::vec3));
+      glNamedBufferSubData(object.naive->position_buffer, 0, bytes, object.deformed.positions_mm.data());
       glNamedBufferSubData(object.naive->normal_buffer, 0, bytes, object.deformed.normals.data());
       plain.set_object(glm::mat4(1.0f), object.material.color);  // deform_mesh gives world coordinates
       glUseProgram(plain.program.id());
@@ -554,12 +566,12 @@ void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection,
   glUseProgram(marker.program.id());
   glBindVertexArray(probe->vertex_array);
   for (const Contact& contact : probes) {
-    draw_marker(marker, *probe, contact.hip, options.probe_radius_mm, options.probe_color);
+    draw_marker(marker, *probe, contact.hip_mm, options.probe_radius_mm, options.probe_color);
   }
   if (options.draw_contact_points) {
     for (const auto& object : objects) {
       for (int i = 0; i < object->dent_count; ++i) {
-        draw_marker(marker, *probe, object->dents[static_cast<std::size_t>(i)].center,
+        draw_marker(marker, *probe, object->dents[static_cast<std::size_t>(i)].center_mm,
                     0.5f * options.probe_radius_mm, options.contact_point_color);
       }
     }

@@ -71,9 +71,9 @@ std::vector<TriangleCluster> cluster_triangles(std::vector<std::uint32_t>& indic
 
 void order_vertices_by_first_use(Mesh& mesh) {
   constexpr std::uint32_t unused = ~0u;
-  std::vector<std::uint32_t> new_index(mesh.positions.size(), unused);
+  std::vector<std::uint32_t> new_index(mesh.positions_mm.size(), unused);
   std::vector<std::uint32_t> old_index;
-  old_index.reserve(mesh.positions.size());
+  old_index.reserve(mesh.positions_mm.size());
   for (std::uint32_t& index : mesh.indices) {
     if (new_index[index] == unused) {
       new_index[index] = static_cast<std::uint32_t>(old_index.size());
@@ -81,7 +81,7 @@ void order_vertices_by_first_use(Mesh& mesh) {
     }
     index = new_index[index];
   }
-  for (std::uint32_t i = 0; i < mesh.positions.size(); ++i) {  // vertices of no triangle go last
+  for (std::uint32_t i = 0; i < mesh.positions_mm.size(); ++i) {  // vertices of no triangle go last
     if (new_index[i] == unused) old_index.push_back(i);
   }
   const auto reorder = [&](std::vector<glm::vec3>& values) {
@@ -90,7 +90,7 @@ void order_vertices_by_first_use(Mesh& mesh) {
     for (std::size_t i = 0; i < old_index.size(); ++i) ordered[i] = values[old_index[i]];
     values = std::move(ordered);
   };
-  reorder(mesh.positions);
+  reorder(mesh.positions_mm);
   reorder(mesh.normals);
   reorder(mesh.colors);
 }

@@ -28,7 +28,7 @@ struct Window::State {
   GLFWwindow* window = nullptr;
 };
 
-Window::Window(const WindowOptions& options) : state_(std::make_unique<State>()) {
+Window::Window(const WindowParams& options) : state_(std::make_unique<State>()) {
   const std::lock_guard lock(glfw_mutex);
   if (glfw_windows == 0 && !glfwInit()) throw Error("cannot open a window: glfwInit failed: " + glfw_error());
   glfwDefaultWindowHints();

@@ -10,7 +10,7 @@
 namespace palpate {
 
 DeviceTransform fit_workspace(const Bounds& device_workspace, const Bounds& scene_region) noexcept {
-  const glm::vec3 device_size = device_workspace.size(), scene_size = scene_region.size();
+  const glm::vec3 device_size = device_workspace.size_mm(), scene_size = scene_region.size_mm();
   float scale = 1.0f;
   bool first = true;
   for (int axis = 0; axis < 3; ++axis) {
@@ -22,7 +22,7 @@ DeviceTransform fit_workspace(const Bounds& device_workspace, const Bounds& scen
   if (!(scale > 0.0f)) scale = 1.0f;
   DeviceTransform transform;
   transform.scale = scale;
-  transform.translation = scene_region.center() - scale * device_workspace.center();
+  transform.translation_mm = scene_region.center_mm() - scale * device_workspace.center_mm();
   return transform;
 }
 
@@ -46,7 +46,7 @@ void validate_device_transform(const DeviceTransform& transform) {
     throw Error("device transform: rotation must have determinant +1 (a mirror flips the surface normals)");
   }
   for (int axis = 0; axis < 3; ++axis) {
-    if (!std::isfinite(transform.translation[axis]))
+    if (!std::isfinite(transform.translation_mm[axis]))
       throw Error("device transform: translation is not finite");
   }
 }

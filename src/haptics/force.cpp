@@ -4,12 +4,10 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "palpate/core/finite.hpp"
+
 namespace palpate {
 namespace {
-
-bool finite(glm::vec3 v) noexcept {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 
 constexpr float mm_per_m = 1000.0f;
 
@@ -19,8 +17,8 @@ ForceResult spring_damper(const Contact& contact, glm::vec3 hip_velocity_mm_per_
                           float max_force_n) noexcept {
   ForceResult result;
   const float k = material.stiffness_n_per_mm, b = material.damping_ns_per_m;
-  if (!finite(contact.hip) || !finite(contact.point) || !finite(contact.normal) ||
-      !finite(hip_velocity_mm_per_s) || !std::isfinite(k) || !std::isfinite(b) ||
+  if (!is_finite(contact.hip_mm) || !is_finite(contact.point_mm) || !is_finite(contact.normal) ||
+      !is_finite(hip_velocity_mm_per_s) || !std::isfinite(k) || !std::isfinite(b) ||
       !std::isfinite(max_force_n)) {
     result.invalid_input = true;
     return result;
@@ -28,7 +26,7 @@ ForceResult spring_damper(const Contact& contact, glm::vec3 hip_velocity_mm_per_
   if (!contact.in_contact()) return result;
   const glm::vec3 n = contact.normal;
   glm::vec3 force =
-      k * (contact.point - contact.hip) - (b * glm::dot(hip_velocity_mm_per_s, n) / mm_per_m) * n;
+      k * (contact.point_mm - contact.hip_mm) - (b * glm::dot(hip_velocity_mm_per_s, n) / mm_per_m) * n;
   const float push = glm::dot(force, n);
   if (push < 0.0f) force -= push * n;
   const float magnitude = glm::length(force);

@@ -6,7 +6,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 #include <cstring>
 #include <string>
 
@@ -26,7 +25,8 @@ double checked_rate(double rate_hz) {
 
 HapticLoop::HapticLoop(Device& device, const Scene& scene, const Bvh& bvh, const HapticLoopParams& params,
                        LoopClock* clock)
-    : pipeline_(device, scene, bvh, params.device_to_scene, params.proxy),
+    : bvh_(bvh),
+      pipeline_(device, scene, bvh, params.device_to_scene, params.proxy),
       rate_hz_(checked_rate(params.rate_hz)),
       period_ns_(std::llround(1e9 / rate_hz_)),
       params_(params),
@@ -34,7 +34,12 @@ HapticLoop::HapticLoop(Device& device, const Scene& scene, const Bvh& bvh, const
                        : std::make_unique<MonotonicClock>(std::min<std::int64_t>(
                              std::llround(std::max(params.spin_us, 0.0) * 1e3), period_ns_ / 2))),
       clock_(clock ? *clock : *own_clock_),
-      stats_(rate_hz_, params.statistics_window) {}
+      stats_(rate_hz_, params.statistics_window),
+      object_count_(scene.objects.size()),
+      materials_(std::make_unique<Latest<Material>[]>(scene.objects.size())),
+      device_to_scene_(params.device_to_scene) {
+  for (std::size_t i = 0; i < object_count_; ++i) materials_[i].store(scene.objects[i].material);
+}
 
 HapticLoop::~HapticLoop() {
   stop();
@@ -47,12 +52,47 @@ void HapticLoop::begin_run() noexcept {
   first_of_run_ = true;
 }
 
+void HapticLoop::set_material(std::size_t object, const Material& material) {
+  if (object >= object_count_) {
+    throw Error("haptic loop: set_material: object " + std::to_string(object) +
+                " out of range (the scene has " + std::to_string(object_count_) + ")");
+  }
+  if (material.touchable && !bvh_.contains(int(object))) {
+    throw Error("haptic loop: set_material: object " + std::to_string(object) +
+                " cannot become touchable: the BVH does not hold it (build it with Bvh::build(scene, {}))");
+  }
+  const std::lock_guard<std::mutex> lock(setters_);
+  materials_[object].store(material);
+  materials_generation_.fetch_add(1, std::memory_order_release);
+}
+
+void HapticLoop::set_device_transform(const DeviceTransform& device_to_scene) {
+  validate_device_transform(device_to_scene);
+  const std::lock_guard<std::mutex> lock(setters_);
+  device_to_scene_.store(device_to_scene);
+}
+
+// A store that overlaps these reads shows as a newer generation or version at the next tick.
+void HapticLoop::apply_live_changes() noexcept {
+  const std::uint64_t generation = materials_generation_.load(std::memory_order_acquire);
+  if (generation != materials_applied_) {
+    materials_applied_ = generation;
+    for (std::size_t i = 0; i < object_count_; ++i) pipeline_.set_material(i, materials_[i].load());
+  }
+  const std::uint64_t version = device_to_scene_.version();
+  if (version != device_to_scene_applied_) {
+    device_to_scene_applied_ = version;
+    pipeline_.set_device_transform(device_to_scene_.load());
+  }
+}
+
 void HapticLoop::run_period() noexcept {
   clock_.sleep_until_ns(period_start_ns_);
   const std::int64_t start_ns = clock_.now_ns();
+  apply_live_changes();
   const TickResult result =
       pipeline_.tick(next_tick_, double(start_ns - origin_ns_.load(std::memory_order_relaxed)) * 1e-9);
-  contacts_.store(result.contact);
+  results_.store(result);
   const std::int64_t end_ns = clock_.now_ns();
   const std::int64_t period_end_ns = period_start_ns_ + period_ns_;
   const bool missed = end_ns > period_end_ns;
@@ -80,10 +120,9 @@ void HapticLoop::start() {
     priority.sched_priority = std::clamp(params_.fifo_priority, 1, 99);
     const int status = pthread_setschedparam(thread_.native_handle(), SCHED_FIFO, &priority);
     granted = status == 0;
-    if (!granted) {
-      std::fprintf(stderr,
-                   "palpate: haptic loop: SCHED_FIFO not permitted (%s); running at normal priority\n",
-                   std::strerror(status));
+    if (!granted && params_.on_log) {
+      params_.on_log(std::string("haptic loop: SCHED_FIFO not permitted (") + std::strerror(status) +
+                     "); running at normal priority");
     }
   }
   realtime_.store(granted, std::memory_order_relaxed);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "palpate/core/error.hpp"
+#include "palpate/core/finite.hpp"
 
 namespace palpate {
 namespace {
@@ -16,18 +17,14 @@ void require(bool ok, const char* field, const std::string& why) {
   if (!ok) throw Error(std::string("press-slide path: ") + field + " " + why);
 }
 
-bool finite(glm::vec3 v) {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
-
 }  // namespace
 
-PressSlidePath::PressSlidePath(const PressSlide& spec) : spec_(spec) {
-  require(finite(spec.surface_point_mm), "surface_point_mm", "must be finite");
-  require(finite(spec.normal) && glm::length(spec.normal) > 1e-6f, "normal",
+PressSlidePath::PressSlidePath(const PressSlideParams& spec) : spec_(spec) {
+  require(is_finite(spec.surface_point_mm), "surface_point_mm", "must be finite");
+  require(is_finite(spec.normal) && glm::length(spec.normal) > 1e-6f, "normal",
           "must be a finite non-zero vector");
   normal_ = glm::normalize(spec.normal);
-  require(finite(spec.slide_direction), "slide_direction", "must be finite");
+  require(is_finite(spec.slide_direction), "slide_direction", "must be finite");
   const glm::vec3 tangent = spec.slide_direction - normal_ * glm::dot(spec.slide_direction, normal_);
   require(glm::length(tangent) > 1e-3f * std::max(1.0f, glm::length(spec.slide_direction)), "slide_direction",
           "must not be along the normal");
@@ -116,31 +113,38 @@ DeviceState PressSlidePath::sample(double time_s) const noexcept {
   return state;
 }
 
-PressSlide aim_press_slide(const SceneObject& object, std::size_t vertex, glm::vec3 slide_direction,
-                           PressSlide spec, float smoothing_radius_mm) {
+PressSlideParams aim_press_slide(const SceneObject& object, std::size_t vertex, glm::vec3 slide_direction,
+                                 PressSlideParams spec, float smoothing_radius_mm) {
   const Mesh& mesh = object.mesh;
-  if (vertex >= mesh.positions.size()) {
+  if (vertex >= mesh.positions_mm.size()) {
     throw Error("aim_press_slide: vertex " + std::to_string(vertex) + " of '" + object.name +
-                "' is out of range (" + std::to_string(mesh.positions.size()) + " vertices)");
+                "' is out of range (" + std::to_string(mesh.positions_mm.size()) + " vertices)");
   }
   Mesh with_normals;
   const Mesh* normals_from = &mesh;
-  if (mesh.normals.size() != mesh.positions.size()) {
+  if (mesh.normals.size() != mesh.positions_mm.size()) {
     with_normals = mesh;
     compute_vertex_normals(with_normals);
     normals_from = &with_normals;
   }
-  const glm::vec3 local = mesh.positions[vertex];
+  const glm::vec3 local = mesh.positions_mm[vertex];
   glm::vec3 normal_sum(0.0f);
-  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
-    if (glm::length(mesh.positions[v] - local) <= smoothing_radius_mm) normal_sum += normals_from->normals[v];
+  for (std::size_t v = 0; v < mesh.positions_mm.size(); ++v) {
+    if (glm::length(mesh.positions_mm[v] - local) <= smoothing_radius_mm)
+      normal_sum += normals_from->normals[v];
   }
   if (glm::length(normal_sum) < 1e-6f) normal_sum = normals_from->normals[vertex];
-  const glm::vec3 centre = glm::vec3(object.transform * glm::vec4(bounds(mesh).center(), 1.0f));
+  const glm::vec3 centre = glm::vec3(object.transform * glm::vec4(bounds(mesh).center_mm(), 1.0f));
   spec.surface_point_mm = glm::vec3(object.transform * glm::vec4(local, 1.0f));
   spec.normal = glm::normalize(glm::mat3(object.transform) * normal_sum);
   spec.slide_direction = slide_direction;
-  spec.curvature_radius_mm = glm::length(spec.surface_point_mm - centre);
+  // The sphere about the centre fits where the surface faces away from it (a head, a brain); elsewhere
+  // (a sheet, a dent, a thin part) slide flat.
+  const glm::vec3 from_centre = spec.surface_point_mm - centre;
+  const float radius = glm::length(from_centre);
+  const float deepest = std::abs(spec.press_depth_mm) + std::abs(spec.depth_amplitude_mm);
+  const bool faces_away = radius > 0.0f && glm::dot(spec.normal, from_centre / radius) > 0.7f;
+  spec.curvature_radius_mm = faces_away && radius > 2.0f * deepest ? radius : 0.0f;
   return spec;
 }
 

@@ -7,8 +7,14 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 
+#include "palpate/core/finite.hpp"
+
 namespace palpate {
 namespace {
+
+// How near the proxy a face must pass, in surface epsilons, to count as one it touches (it floats one
+// epsilon above the planes it rests on; where they meet at a sharp angle, a little more).
+constexpr double near_reach = 10.0;
 
 // A path can meet one more plane while three are active, so the solve looks at up to four and keeps
 // the (at most three) that the minimum rests on.
@@ -32,10 +38,6 @@ struct Solution {
   glm::dvec3 point{0.0};  // the minimum
   double multiplier[max_candidates] = {};
 };
-
-bool finite(glm::vec3 v) noexcept {
-  return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z);
-}
 
 // Subsets of up to three of four candidates, smallest first, as bit masks (listing them beats
 // counting bits at run time).
@@ -119,31 +121,33 @@ bool supported(const Bvh& bvh, const Candidate* c, int count, const glm::dvec3& 
 }  // namespace
 
 void ProxyState::reset(glm::vec3 p) noexcept {
-  position = glm::dvec3(p);
+  position_mm = glm::dvec3(p);
   constraint_count = 0;
   placed = true;
   last_iterations = 0;
 }
 
-Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const ProxyParams& params) noexcept {
+Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const ProxyParams& params,
+                   ObjectMask touchable) noexcept {
   Contact contact;
-  contact.hip = hip_mm;
-  if (!finite(hip_mm)) return contact;
+  contact.hip_mm = hip_mm;
+  if (!is_finite(hip_mm)) return contact;
   if (!state.placed) state.reset(hip_mm);
   const glm::dvec3 hip(hip_mm);
   const double epsilon = params.surface_epsilon_mm;
   const double tolerance = 1e-3 * epsilon;
 
   // Warm start from the planes the proxy rested on (sliding on a face then costs one segment), except
-  // those whose surface the HIP is now on or in front of: they hold nothing back.
+  // those whose surface the HIP is now on or in front of (they hold nothing back) and those of objects
+  // no longer touchable.
   Candidate c[max_candidates];
   int count = 0;
   for (int i = 0; i < state.constraint_count; ++i) {
     const ProxyConstraint& k = state.constraints[std::size_t(i)];
-    if (glm::dot(k.normal, hip) < k.offset - epsilon)
-      c[count++] = {k.normal, k.offset, k.primitive, k.multiplier};
+    if (glm::dot(k.normal, hip) < k.offset_mm - epsilon && bvh.primitive_seen(touchable, k.primitive))
+      c[count++] = {k.normal, k.offset_mm, k.primitive, k.multiplier_mm};
   }
-  glm::dvec3 p = state.position;
+  glm::dvec3 p = state.position_mm;
   // The last face met, for the contact when the segment cap cuts a search short.
   std::uint32_t last_primitive = count > 0 ? c[0].primitive : 0;
   bool handed_over = false;       // the last look past an edge handed the proxy to the face beyond
@@ -165,12 +169,42 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
     return Candidate{normal, plane + epsilon, hit.primitive, 0.0};
   };
 
+  // At an edge or vertex where the faces meet in a ridge or saddle, a face the proxy touches but does
+  // not rest on may come nearer the HIP than where it rests: it moves onto that face's nearest point
+  // when the straight way there is free. Each such step brings it nearer the HIP, so the search cannot
+  // cycle. False when there is no such face (a local minimum of its distance to the HIP).
+  bool stepped_over_saddle = false;
+  const auto step_onto_closer_face = [&]() {
+    const BvhHit closer = bvh.closest_point_near(hip, p, near_reach * epsilon, touchable);
+    if (!closer.hit() || double(closer.distance_mm) >= glm::distance(p, hip) - 2.0 * epsilon ||
+        std::any_of(c, c + count, [&](const Candidate& k) { return k.primitive == closer.primitive; })) {
+      return false;
+    }
+    const Bvh::Triangle& tri = bvh.triangle(closer.primitive);
+    const glm::dvec3 v0(tri.vertices[0]), v1(tri.vertices[1]), v2(tri.vertices[2]);
+    const glm::dvec3 normal = glm::normalize(glm::cross(v1 - v0, v2 - v0));
+    const glm::dvec3 onto = closest_point_on_triangle(hip, v0, v1, v2) + normal * epsilon;
+    // The straight way there runs through the surface (a saddle): rest on that face where the proxy
+    // is and walk over it (its walls met on the walk), once a tick so that the search cannot cycle.
+    if (bvh.first_hit(p, onto, Faces::front, tolerance, touchable).hit()) {
+      if (stepped_over_saddle) return false;
+      stepped_over_saddle = true;
+    } else {
+      p = onto;
+    }
+    c[0] = Candidate{normal, glm::dot(normal, v0) + epsilon, closer.primitive, 0.0};
+    count = 1;
+    last_primitive = closer.primitive;
+    handed_over = false;
+    return true;
+  };
+
   int iteration = 0;
   while (iteration < params.max_iterations) {
     ++iteration;
     const int offered = count;
     const Solution s = solve(c, count, hip, tolerance);
-    bool at_edge = false;
+    bool at_edge = false, wedged = false;
     glm::dvec3 nearest(0.0);
     if (s.found) {
       int kept = 0;
@@ -198,13 +232,17 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
         if (beyond2 <= size2) {
           at_edge = beyond2 > tolerance * tolerance;
           goal = lifted;
-          // Handed back to the edge or vertex it was handed over from: the surface's nearest point.
-          if (at_edge && handed_over && glm::distance(nearest, handover_from) < tolerance) break;
+          // Handed back to the edge or vertex it was handed over from: the surface's nearest point,
+          // unless a face it touches comes nearer.
+          if (at_edge && handed_over && glm::distance(nearest, handover_from) < tolerance) {
+            if (step_onto_closer_face()) continue;
+            break;
+          }
         }
       }
       const glm::dvec3 path = goal - p;
       if (glm::dot(path, path) > 1e-24) {  // 1e-12 mm
-        const BvhHit hit = bvh.first_hit(p, goal, Faces::front, tolerance);
+        const BvhHit hit = bvh.first_hit(p, goal, Faces::front, tolerance, touchable);
         if (hit.hit()) {
           c[count++] = stop_before(hit, goal);
           handed_over = false;
@@ -213,29 +251,44 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
         p = goal;
       }
       if (!at_edge) {
-        if (count == 0 || supported(bvh, c, count, p, epsilon)) break;  // free at the HIP, or resting
-        // Followed its planes past the end of their triangles: find the constraints again from here.
-        count = 0;
-        handed_over = false;
-        continue;
+        if (count == 0) break;  // free at the HIP
+        if (!supported(bvh, c, count, p, epsilon)) {
+          // Followed its planes past the end of their triangles: find the constraints again from here.
+          count = 0;
+          handed_over = false;
+          continue;
+        }
+        if (count == 1) break;  // resting on a face
+        // Wedged where two or three planes meet. A true crease or corner: the way toward the HIP runs
+        // into one of its own faces. Where the faces only meet at a ridge or saddle vertex, another face
+        // of the surface is in view, and the proxy goes on over it (as planes, they would hold it
+        // there however far the tip went).
+        wedged = true;
       }
     }
     // At the edge of its face (or wedged where no goal fits): look from here toward the HIP.
-    const BvhHit next = bvh.first_hit(p, hip, Faces::front, tolerance);
+    const BvhHit next = bvh.first_hit(p, hip, Faces::front, tolerance, touchable);
     if (!next.hit()) {  // nothing in the way: the HIP is outside and reachable
       p = hip;
       count = 0;
       break;
     }
-    if (!s.found || next.primitive == c[0].primitive) break;  // its own face in the way: as close as it gets
-    // Past its edge: the face in view takes over (a concave one is met again as a wall on the walk).
-    c[0] = stop_before(next, hip);
+    if (!s.found) break;
+    if (std::any_of(c, c + count, [&](const Candidate& k) { return k.primitive == next.primitive; })) {
+      // Its own face in the way: as close as it gets, unless a face it touches comes nearer.
+      if (step_onto_closer_face()) continue;
+      break;
+    } else {
+      // Past its edge, or out of a false corner: the face in view takes over (a concave one is met
+      // again as a wall on the walk).
+      c[0] = stop_before(next, hip);
+    }
     count = 1;
     handed_over = true;
-    handover_from = nearest;
+    handover_from = wedged ? p : nearest;
   }
 
-  state.position = p;
+  state.position_mm = p;
   state.last_iterations = iteration;
   // Keep at most three planes (the solve keeps no more; a capped tick may end with a fourth).
   const int first = std::max(0, count - 3);
@@ -244,7 +297,7 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
     state.constraints[std::size_t(i - first)] = {c[i].normal, c[i].offset, c[i].multiplier, c[i].primitive};
   }
 
-  contact.point = glm::vec3(p);
+  contact.point_mm = glm::vec3(p);
   const glm::dvec3 spring = p - hip;
   const double depth = glm::length(spring);
   // In contact while a plane holds the proxy back, or while a search the cap cut short left it apart
@@ -253,12 +306,14 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   std::uint32_t primary = last_primitive;
   double strongest = -1.0;
   for (int i = 0; i < state.constraint_count; ++i) {
-    if (state.constraints[std::size_t(i)].multiplier > strongest) {
-      strongest = state.constraints[std::size_t(i)].multiplier;
+    if (state.constraints[std::size_t(i)].multiplier_mm > strongest) {
+      strongest = state.constraints[std::size_t(i)].multiplier_mm;
       primary = state.constraints[std::size_t(i)].primitive;
     }
   }
-  bvh.locate(primary, contact.object, contact.triangle);
+  const Bvh::Location location = bvh.locate(primary);
+  contact.object = location.object;
+  contact.triangle = location.triangle;
   if (depth > 0.5 * epsilon) {
     contact.normal = glm::vec3(spring / depth);
   } else {

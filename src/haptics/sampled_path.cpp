@@ -8,13 +8,13 @@
 #include <string_view>
 
 #include "palpate/core/error.hpp"
+#include "palpate/core/finite.hpp"
 
 namespace palpate {
 namespace {
 
 bool finite(const PathSample& s) {
-  return std::isfinite(s.time_s) && std::isfinite(s.position_mm.x) && std::isfinite(s.position_mm.y) &&
-         std::isfinite(s.position_mm.z);
+  return std::isfinite(s.time_s) && is_finite(s.position_mm);
 }
 
 std::string_view trim(std::string_view text) {

@@ -106,7 +106,7 @@ void expect_dent_only_around_the_contact(const std::filesystem::path& out) {
     return &frame[(std::size_t(height - 1 - y) * std::size_t(width) + std::size_t(x)) * 4];
   };
 
-  const glm::vec3 contact = vec(key["contact"]["point"]);
+  const glm::vec3 contact = vec(key["contact"]["point_mm"]);
   const int object = key["contact"]["object"].get<int>();
   const float reach_mm = 4.0f * scene.objects[std::size_t(object)].material.sigma_mm;
   const glm::vec2 centre = project(projection * view, contact, width, height);

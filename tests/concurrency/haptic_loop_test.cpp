@@ -30,7 +30,7 @@ Scene cube_scene() {
 }
 
 PressSlidePath press_on_top_face() {
-  PressSlide spec;
+  PressSlideParams spec;
   spec.surface_point_mm = {-10.0f, 0.0f, 20.0f};
   spec.normal = {0.0f, 0.0f, 1.0f};
   spec.slide_direction = {1.0f, 0.0f, 0.0f};
@@ -89,12 +89,12 @@ TEST(HapticLoopThreadTest, StartsStopsAndRestarts) {
   const std::uint64_t ticks_after_stop = loop.statistics().ticks;
   std::this_thread::sleep_for(20ms);
   EXPECT_EQ(loop.statistics().ticks, ticks_after_stop) << "no tick after stop()";
-  EXPECT_EQ(loop.latest_contact().tick + 1, ticks_after_stop);
+  EXPECT_EQ(loop.latest().contact.tick + 1, ticks_after_stop);
   loop.stop();  // a second stop does nothing
 
   loop.start();
   ASSERT_TRUE(eventually([&] { return loop.statistics().ticks >= ticks_after_stop + 20; }));
-  EXPECT_GT(loop.latest_contact().tick, ticks_after_stop) << "tick numbers go on after a restart";
+  EXPECT_GT(loop.latest().contact.tick, ticks_after_stop) << "tick numbers go on after a restart";
 }  // the destructor stops the running loop
 
 TEST(HapticLoopThreadTest, ContactsAdvanceAndStayWholeWhileReadersPoll) {
@@ -118,7 +118,7 @@ TEST(HapticLoopThreadTest, ContactsAdvanceAndStayWholeWhileReadersPoll) {
       ReaderResult& result = results[r];
       std::uint64_t last_tick = 0, last_stats_ticks = 0;
       while (!stop_readers.load(std::memory_order_relaxed)) {
-        const Contact contact = loop.latest_contact();
+        const Contact contact = loop.latest().contact;
         ++result.reads;
         if (contact.tick < last_tick) ++result.backwards;
         last_tick = contact.tick;
@@ -126,7 +126,7 @@ TEST(HapticLoopThreadTest, ContactsAdvanceAndStayWholeWhileReadersPoll) {
           ++result.in_contact;
           contacts_seen.fetch_add(1, std::memory_order_relaxed);
           // The depth is |HIP - SCP| of the same tick: a torn read would break it.
-          if (std::abs(glm::length(contact.hip - contact.point) - contact.depth_mm) > 1e-3f)
+          if (std::abs(glm::length(contact.hip_mm - contact.point_mm) - contact.depth_mm) > 1e-3f)
             ++result.inconsistent;
         }
         if (r == 0) {  // one reader also polls the statistics
@@ -151,7 +151,7 @@ TEST(HapticLoopThreadTest, ContactsAdvanceAndStayWholeWhileReadersPoll) {
     EXPECT_EQ(result.stats_backwards, 0u);
   }
   const LoopStatistics stats = loop.statistics();
-  EXPECT_EQ(loop.latest_contact().tick + 1, stats.ticks);
+  EXPECT_EQ(loop.latest().contact.tick + 1, stats.ticks);
   EXPECT_GT(stats.achieved_hz, 0.0);
   EXPECT_GT(stats.tick_us.max, 0.0);
   EXPECT_EQ(stats.invalid_input_ticks, 0u);
@@ -169,7 +169,7 @@ TEST(HapticLoopThreadTest, TheLoopThreadNeverAllocates) {
   std::uint64_t contacts = 0;
   // Sample contacts until a whole press-slide cycle (about 0.5 s) has run on the loop thread.
   const bool ran = eventually([&] {
-    if (loop.latest_contact().in_contact()) ++contacts;
+    if (loop.latest().contact.in_contact()) ++contacts;
     return loop.statistics().ticks > 700 && contacts > 10;
   });
   loop.stop();

@@ -33,7 +33,7 @@ std::vector<WorldTriangle> world_triangles(const Scene& scene) {
     if (!obj.material.touchable) continue;
     const auto at = [&](std::size_t corner) {
       return glm::dvec3(
-          glm::vec3(obj.transform * glm::vec4(obj.mesh.positions[obj.mesh.indices[corner]], 1.0f)));
+          glm::vec3(obj.transform * glm::vec4(obj.mesh.positions_mm[obj.mesh.indices[corner]], 1.0f)));
     };
     for (std::size_t t = 0; t < obj.mesh.triangle_count(); ++t)
       out.push_back({at(3 * t), at(3 * t + 1), at(3 * t + 2), int(o), int(t)});
@@ -171,7 +171,7 @@ TEST(Bvh, SegmentCastMatchesBruteForce) {
         EXPECT_NEAR(got.t, expected.t, 1e-9);
       }
       const glm::dvec3 point = from + double(got.t) * (to - from);
-      EXPECT_NEAR(glm::length(glm::dvec3(got.point) - point), 0.0, 1e-4);
+      EXPECT_NEAR(glm::length(glm::dvec3(got.point_mm) - point), 0.0, 1e-4);
       if (front_only) {
         EXPECT_LT(glm::dot(glm::dvec3(got.normal), to - from), 0.0);
       }
@@ -191,7 +191,7 @@ TEST(Bvh, ClosestPointMatchesBruteForce) {
     const BvhHit got = bvh.closest_point(p, 1e9);
     ASSERT_TRUE(got.hit());
     EXPECT_NEAR(got.distance_mm, expected, 1e-4) << "point " << i;
-    EXPECT_NEAR(glm::length(glm::dvec3(got.point) - p), expected, 1e-4);
+    EXPECT_NEAR(glm::length(glm::dvec3(got.point_mm) - p), expected, 1e-4);
     // A search radius below the distance finds nothing; one just above finds it.
     EXPECT_FALSE(bvh.closest_point(p, expected * 0.99).hit());
     EXPECT_TRUE(bvh.closest_point(p, expected * 1.01 + 1e-6).hit());
@@ -207,7 +207,8 @@ TEST(Bvh, SegmentsThroughVerticesAndEdgesNeverSlipThrough) {
   std::uniform_real_distribution<float> jitter(-1.0f, 1.0f);
   int tested = 0;
   for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
-    const glm::vec3 a = mesh.positions[mesh.indices[3 * t]], b = mesh.positions[mesh.indices[3 * t + 1]];
+    const glm::vec3 a = mesh.positions_mm[mesh.indices[3 * t]],
+                    b = mesh.positions_mm[mesh.indices[3 * t + 1]];
     for (const glm::vec3 target : {a, 0.5f * (a + b)}) {
       // From outside toward (through) the target, at several angles.
       for (int k = 0; k < 4; ++k) {
@@ -237,12 +238,12 @@ TEST(Bvh, AppliesTransformsSkipsUntouchableObjectsAndNamesTheObject) {
   const BvhHit right = bvh.first_hit({21, 1, 20}, {21, 1, -20});
   ASSERT_TRUE(right.hit());
   EXPECT_EQ(right.object, 2);
-  EXPECT_NEAR(right.point.z, 5.0f, 1e-5f);
+  EXPECT_NEAR(right.point_mm.z, 5.0f, 1e-5f);
   EXPECT_NEAR(right.t, 15.0f / 40.0f, 1e-6f);
   EXPECT_EQ(right.normal, glm::vec3(0, 0, 1));
   const Mesh& box = scene.objects[2].mesh;
   const std::uint32_t* corners = &box.indices[3 * std::size_t(right.triangle)];
-  for (int k = 0; k < 3; ++k) EXPECT_EQ(box.positions[corners[k]].z, 5.0f);  // a top-face triangle
+  for (int k = 0; k < 3; ++k) EXPECT_EQ(box.positions_mm[corners[k]].z, 5.0f);  // a top-face triangle
   // The untouchable box at the origin is not there.
   EXPECT_FALSE(bvh.first_hit({0, 0, 20}, {0, 0, -20}).hit());
   const BvhHit left = bvh.first_hit({-21, 1, 20}, {-21, 1, -20});
@@ -265,7 +266,7 @@ TEST(Bvh, StartToleranceCatchesASegmentStartingJustBehindAFace) {
 TEST(Bvh, CoincidentTrianglesBuildABoundedTree) {
   // Thousands of copies of one triangle: binning cannot separate them.
   Mesh mesh;
-  mesh.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  mesh.positions_mm = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
   mesh.normals.assign(3, {0, 0, 1});
   for (int i = 0; i < 5000; ++i) mesh.indices.insert(mesh.indices.end(), {0, 1, 2});
   const Bvh bvh = Bvh::build(scene_of(mesh));
@@ -288,7 +289,7 @@ TEST(Bvh, RejectsBadMeshesNamingTheObject) {
     EXPECT_NE(std::string(e.what()).find("vertex 99"), std::string::npos) << e.what();
   }
   Mesh nan_mesh = make_box({1, 1, 1});
-  nan_mesh.positions[3].y = std::nanf("");
+  nan_mesh.positions_mm[3].y = std::nanf("");
   EXPECT_THROW((void)Bvh::build(scene_of(nan_mesh)), Error);
 }
 

@@ -28,7 +28,7 @@ TEST(DentSlope, IsTheDerivativeOfTheGaussian) {
 
 TEST(DisplacedPosition, ReachesTheHipAtTheContactPoint) {
   const Dent dent{{1.0f, 2.0f, 0.0f}, 2.5f, 4.0f};
-  const glm::vec3 moved = displaced_position(dent.center, {0, 0, 1}, {&dent, 1});
+  const glm::vec3 moved = displaced_position(dent.center_mm, {0, 0, 1}, {&dent, 1});
   EXPECT_NEAR(glm::distance(moved, glm::vec3(1.0f, 2.0f, -2.5f)), 0.0f, 1e-6f);
 }
 
@@ -65,7 +65,7 @@ TEST(DeformMesh, MatchesTheAnalyticSurfaceOfAFinePlane) {
   const int n = 41;
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {
-      plane.positions.push_back({(i - n / 2) * 0.5f, (j - n / 2) * 0.5f, 0.0f});
+      plane.positions_mm.push_back({(i - n / 2) * 0.5f, (j - n / 2) * 0.5f, 0.0f});
       plane.normals.push_back({0, 0, 1});
     }
   }
@@ -81,11 +81,11 @@ TEST(DeformMesh, MatchesTheAnalyticSurfaceOfAFinePlane) {
   ASSERT_EQ(out.vertex_count(), plane.vertex_count());
   float worst = 0.0f;
   for (std::size_t v = 0; v < plane.vertex_count(); ++v) {
-    const glm::vec3 p = plane.positions[v];
+    const glm::vec3 p = plane.positions_mm[v];
     const float r = glm::length(glm::vec2(p));
     if (std::abs(p.x) > 9.0f || std::abs(p.y) > 9.0f) continue;  // boundary vertices lack neighbours
     const float expected_z = r < dent_cutoff_sigmas * 3.0f ? -dent_gaussian(r, 1.5f, 3.0f) : 0.0f;
-    EXPECT_NEAR(out.positions[v].z, expected_z, 1e-6f);
+    EXPECT_NEAR(out.positions_mm[v].z, expected_z, 1e-6f);
     const glm::vec3 analytic =
         r > 0 ? glm::normalize(glm::vec3(dent_slope(r, 1.5f, 3.0f) * glm::vec2(p) / r, 1.0f))
               : glm::vec3(0, 0, 1);

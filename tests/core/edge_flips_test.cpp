@@ -19,9 +19,9 @@ double smallest_angle(const Mesh& m) {
   double smallest = 180.0;
   for (std::size_t c = 0; c < m.indices.size(); ++c) {
     const std::size_t t = c / 3 * 3;
-    const glm::dvec3 p(m.positions[m.indices[c]]);
-    const glm::dvec3 a(m.positions[m.indices[t + (c - t + 1) % 3]]),
-        b(m.positions[m.indices[t + (c - t + 2) % 3]]);
+    const glm::dvec3 p(m.positions_mm[m.indices[c]]);
+    const glm::dvec3 a(m.positions_mm[m.indices[t + (c - t + 1) % 3]]),
+        b(m.positions_mm[m.indices[t + (c - t + 2) % 3]]);
     smallest =
         std::min(smallest, glm::degrees(std::acos(glm::dot(glm::normalize(a - p), glm::normalize(b - p)))));
   }
@@ -34,8 +34,8 @@ double mean_smallest_angle(const Mesh& m) {
   for (std::size_t t = 0; t < m.indices.size(); t += 3) {
     double smallest = 180.0;
     for (int k = 0; k < 3; ++k) {
-      const glm::dvec3 p(m.positions[m.indices[t + k]]), a(m.positions[m.indices[t + (k + 1) % 3]]),
-          b(m.positions[m.indices[t + (k + 2) % 3]]);
+      const glm::dvec3 p(m.positions_mm[m.indices[t + k]]), a(m.positions_mm[m.indices[t + (k + 1) % 3]]),
+          b(m.positions_mm[m.indices[t + (k + 2) % 3]]);
       smallest =
           std::min(smallest, glm::degrees(std::acos(glm::dot(glm::normalize(a - p), glm::normalize(b - p)))));
     }
@@ -47,9 +47,9 @@ double mean_smallest_angle(const Mesh& m) {
 std::size_t facing_centre(const Mesh& m, glm::dvec3 centre) {
   std::size_t n = 0;
   for (std::size_t t = 0; t < m.indices.size(); t += 3) {
-    const glm::dvec3 a = glm::dvec3(m.positions[m.indices[t]]) - centre,
-                     b = glm::dvec3(m.positions[m.indices[t + 1]]) - centre,
-                     c = glm::dvec3(m.positions[m.indices[t + 2]]) - centre;
+    const glm::dvec3 a = glm::dvec3(m.positions_mm[m.indices[t]]) - centre,
+                     b = glm::dvec3(m.positions_mm[m.indices[t + 1]]) - centre,
+                     c = glm::dvec3(m.positions_mm[m.indices[t + 2]]) - centre;
     if (!(glm::dot(a, glm::cross(b, c)) > 0.0)) ++n;
   }
   return n;
@@ -58,7 +58,7 @@ std::size_t facing_centre(const Mesh& m, glm::dvec3 centre) {
 // A sphere squashed 4:1: its triangles become long and thin, and the Delaunay ones are others.
 Mesh squashed_sphere() {
   Mesh m = make_sphere(40.0f, 3000);
-  for (glm::vec3& p : m.positions) p.z *= 0.25f;
+  for (glm::vec3& p : m.positions_mm) p.z *= 0.25f;
   return m;
 }
 
@@ -86,8 +86,8 @@ TEST(EdgeFlips, NeverFlipAcrossACrease) {
   flip_toward_delaunay(box, opposite, glm::dvec3(0.0), glm::radians(25.0));
   for (std::size_t t = 0; t < box.indices.size(); t += 3) {
     // Each triangle still lies in one face of the box: one coordinate is shared by its three corners.
-    const glm::vec3 a = box.positions[box.indices[t]], b = box.positions[box.indices[t + 1]],
-                    c = box.positions[box.indices[t + 2]];
+    const glm::vec3 a = box.positions_mm[box.indices[t]], b = box.positions_mm[box.indices[t + 1]],
+                    c = box.positions_mm[box.indices[t + 2]];
     EXPECT_TRUE((a.x == b.x && b.x == c.x) || (a.y == b.y && b.y == c.y) || (a.z == b.z && b.z == c.z));
   }
 }
@@ -104,7 +104,7 @@ TEST(RadialRelaxation, KeepsEveryVertexOnTheSurfaceAndImprovesTheTriangles) {
     return 1.0 / std::sqrt(w.x * w.x / (60.0 * 60.0) + w.y * w.y / (40.0 * 40.0) + w.z * w.z / (15.0 * 15.0));
   };
   Mesh m = make_sphere(1.0f, 4000);
-  for (glm::vec3& p : m.positions) {
+  for (glm::vec3& p : m.positions_mm) {
     const glm::dvec3 w = glm::normalize(glm::dvec3(p));
     p = glm::vec3(ellipsoid(w) * w);
   }
@@ -112,7 +112,7 @@ TEST(RadialRelaxation, KeepsEveryVertexOnTheSurfaceAndImprovesTheTriangles) {
   relax_radial_mesh(m, glm::dvec3(0.0), ellipsoid, 4, glm::radians(25.0));
   EXPECT_EQ(m.vertex_count(), 4000u);
   EXPECT_EQ(m.triangle_count(), 7996u);
-  for (const glm::vec3& p : m.positions) {
+  for (const glm::vec3& p : m.positions_mm) {
     const glm::dvec3 q(p);
     EXPECT_NEAR(glm::length(q), ellipsoid(glm::normalize(q)), 1e-4);
   }

@@ -138,7 +138,7 @@ TEST_F(Malformed, GzipWithCorruptBytes) {
 }
 
 TEST_F(Malformed, UnknownFieldIsAnErrorWithItsLineWhenTheLenientPassIsOff) {
-  LoadOptions strict;
+  LoadParams strict;
   strict.drop_unknown_fields = false;
   try {
     load_model(data_ / "vrml/castle_alien_mirror.wrl", strict);

@@ -86,7 +86,7 @@ TEST_P(ManifestFile, LoadsWithTheListedTriangleCountOrSaysWhatIsUnsupported) {
   if (row.path.empty()) GTEST_SKIP() << "manifest.tsv has no rows";
   const std::filesystem::path file = data / row.path;
   std::vector<std::string> warnings;
-  LoadOptions options;
+  LoadParams options;
   options.on_warning = [&](const std::string& w) { warnings.push_back(w); };
 
   if (const auto failure = expected_failures().find(row.path); failure != expected_failures().end()) {
@@ -134,9 +134,9 @@ TEST(ManifestTopology, ClosedSurfacesStayClosedAndOutward) {
     // outside is positive.
     double volume = 0.0;
     for (std::size_t t = 0; t < mesh.indices.size(); t += 3) {
-      volume += glm::dot(glm::dvec3(mesh.positions[mesh.indices[t]]),
-                         glm::cross(glm::dvec3(mesh.positions[mesh.indices[t + 1]]),
-                                    glm::dvec3(mesh.positions[mesh.indices[t + 2]])));
+      volume += glm::dot(glm::dvec3(mesh.positions_mm[mesh.indices[t]]),
+                         glm::cross(glm::dvec3(mesh.positions_mm[mesh.indices[t + 1]]),
+                                    glm::dvec3(mesh.positions_mm[mesh.indices[t + 2]])));
     }
     EXPECT_GT(volume, 0.0);
   }

@@ -42,7 +42,7 @@ TEST(LoadObj, PerFaceNormalsAreWeldedToTheFilesPositions) {
   // The normals disagree at every vertex, so they are area-weighted over the welded faces:
   // at the origin the three axis-aligned faces, each of area 1/2.
   for (std::size_t v = 0; v < 4; ++v) {
-    if (m.positions[v] == glm::vec3(0.0f)) {
+    if (m.positions_mm[v] == glm::vec3(0.0f)) {
       EXPECT_NEAR(glm::dot(m.normals[v], glm::normalize(glm::vec3(-1.0f))), 1.0f, 1e-5f);
     }
   }
@@ -90,9 +90,9 @@ TEST(LoadPly, AsciiWithColours) {
   const Mesh m = load_mesh(write_text("colours.ply", ply));
   ASSERT_EQ(m.colors.size(), 3u);
   for (std::size_t v = 0; v < 3; ++v) {
-    const glm::vec3 expected = m.positions[v] == glm::vec3(0, 0, 0)   ? glm::vec3(1, 0, 0)
-                               : m.positions[v] == glm::vec3(1, 0, 0) ? glm::vec3(0, 1, 0)
-                                                                      : glm::vec3(0, 0, 1);
+    const glm::vec3 expected = m.positions_mm[v] == glm::vec3(0, 0, 0)   ? glm::vec3(1, 0, 0)
+                               : m.positions_mm[v] == glm::vec3(1, 0, 0) ? glm::vec3(0, 1, 0)
+                                                                         : glm::vec3(0, 0, 1);
     EXPECT_EQ(m.colors[v], expected);
   }
   for (const glm::vec3& n : m.normals) EXPECT_NEAR(n.z, 1.0f, 1e-6f);  // computed: no normals in the file
@@ -102,7 +102,7 @@ TEST(LoadPly, AsciiWithColours) {
 void expect_same_triangles(const Mesh& a, const Mesh& b, float tolerance) {
   ASSERT_EQ(a.triangle_count(), b.triangle_count());
   for (std::size_t i = 0; i < a.indices.size(); ++i) {
-    const glm::vec3 pa = a.positions[a.indices[i]], pb = b.positions[b.indices[i]];
+    const glm::vec3 pa = a.positions_mm[a.indices[i]], pb = b.positions_mm[b.indices[i]];
     ASSERT_LE(glm::length(pa - pb), tolerance) << "corner " << i;
   }
 }

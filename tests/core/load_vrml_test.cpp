@@ -35,9 +35,9 @@ std::string cube_face_set(const std::string& extra_fields = "") {
 double signed_volume(const Mesh& m) {
   double volume = 0.0;
   for (std::size_t t = 0; t < m.indices.size(); t += 3) {
-    volume += glm::dot(glm::dvec3(m.positions[m.indices[t]]),
-                       glm::cross(glm::dvec3(m.positions[m.indices[t + 1]]),
-                                  glm::dvec3(m.positions[m.indices[t + 2]]))) /
+    volume += glm::dot(glm::dvec3(m.positions_mm[m.indices[t]]),
+                       glm::cross(glm::dvec3(m.positions_mm[m.indices[t + 1]]),
+                                  glm::dvec3(m.positions_mm[m.indices[t + 2]]))) /
               6.0;
   }
   return volume;
@@ -52,7 +52,7 @@ TEST(LoadVrml, FacetedCubeByDefaultCreaseAngleZero) {
   for (std::size_t v = 0; v < m.vertex_count(); ++v) {
     // Each normal is a face axis: one component is ±1.
     EXPECT_NEAR(std::abs(m.normals[v].x) + std::abs(m.normals[v].y) + std::abs(m.normals[v].z), 1.0f, 1e-6f);
-    EXPECT_GT(glm::dot(m.normals[v], m.positions[v] - glm::vec3(0.5f)), 0.0f);  // outward
+    EXPECT_GT(glm::dot(m.normals[v], m.positions_mm[v] - glm::vec3(0.5f)), 0.0f);  // outward
   }
 }
 
@@ -64,7 +64,7 @@ TEST(LoadVrml, SmoothCubeWithLargeCreaseAngleIsClosed) {
   for (std::size_t v = 0; v < 8; ++v) {
     // Area-weighted over the corner's faces: two triangles on one face, one on another, ... the
     // normal points away from the centre, into the corner's octant.
-    const glm::vec3 out = m.positions[v] - glm::vec3(0.5f);
+    const glm::vec3 out = m.positions_mm[v] - glm::vec3(0.5f);
     EXPECT_GT(glm::dot(m.normals[v], glm::normalize(out)), 0.8f);
   }
 }
@@ -110,7 +110,7 @@ TEST(LoadVrml, ColoursPerFaceSplitVerticesAndPerVertexKeepThem) {
   EXPECT_EQ(per_vertex.vertex_count(), 4u);
   ASSERT_EQ(per_vertex.colors.size(), 4u);
   for (std::size_t v = 0; v < 4; ++v) {
-    const glm::vec3 p = per_vertex.positions[v] - glm::vec3(5, 0, 0);  // the Transform is baked in
+    const glm::vec3 p = per_vertex.positions_mm[v] - glm::vec3(5, 0, 0);  // the Transform is baked in
     const glm::vec3 expected = p == glm::vec3(0, 0, 0)   ? glm::vec3(1, 0, 0)
                                : p == glm::vec3(1, 0, 0) ? glm::vec3(0, 1, 0)
                                : p == glm::vec3(1, 1, 0) ? glm::vec3(0, 0, 1)
@@ -143,10 +143,10 @@ TEST(LoadVrml, DefUseInstancesGetTheirOwnTransforms) {
   EXPECT_EQ(scene.objects[0].name, "Cube");
   const Bounds second = bounds(scene.objects[1].mesh);
   // Rotated 90° about z then scaled by 2 then moved by 10 in x: x in [8, 10], y in [0, 2], z in [0, 2].
-  EXPECT_NEAR(second.min.x, 8.0f, 1e-5f);
-  EXPECT_NEAR(second.max.x, 10.0f, 1e-5f);
-  EXPECT_NEAR(second.max.y, 2.0f, 1e-5f);
-  EXPECT_NEAR(second.max.z, 2.0f, 1e-5f);
+  EXPECT_NEAR(second.min_mm.x, 8.0f, 1e-5f);
+  EXPECT_NEAR(second.max_mm.x, 10.0f, 1e-5f);
+  EXPECT_NEAR(second.max_mm.y, 2.0f, 1e-5f);
+  EXPECT_NEAR(second.max_mm.z, 2.0f, 1e-5f);
   EXPECT_NEAR(signed_volume(scene.objects[1].mesh), 8.0, 1e-4);
 }
 
@@ -190,9 +190,9 @@ TEST(LoadVrml, PrimitivesAtCoinsDefaultComplexity) {
   EXPECT_EQ(scene.objects[1].mesh.triangle_count(), 12u);
   EXPECT_EQ(scene.objects[2].mesh.triangle_count(), 38u);
   EXPECT_EQ(scene.objects[3].mesh.triangle_count(), 76u);
-  for (const glm::vec3& p : scene.objects[0].mesh.positions) EXPECT_NEAR(glm::length(p), 2.0f, 1e-5f);
+  for (const glm::vec3& p : scene.objects[0].mesh.positions_mm) EXPECT_NEAR(glm::length(p), 2.0f, 1e-5f);
   const Bounds box = bounds(scene.objects[1].mesh);
-  EXPECT_EQ(box.size(), glm::vec3(1, 2, 3));
+  EXPECT_EQ(box.size_mm(), glm::vec3(1, 2, 3));
   EXPECT_GT(signed_volume(scene.objects[0].mesh), 0.0);
   EXPECT_NEAR(signed_volume(scene.objects[1].mesh), 6.0, 1e-5);
 }
@@ -211,7 +211,7 @@ TEST(LoadVrml, TextAndLinesAreSkippedWithWarnings) {
       "Shape { geometry " +
       cube_face_set() + " }\n";
   std::vector<std::string> warnings;
-  LoadOptions options;
+  LoadParams options;
   options.on_warning = [&](const std::string& w) { warnings.push_back(w); };
   const Scene scene = load_model(write_text("text.wrl", text), options);
   EXPECT_EQ(scene.objects.size(), 1u);
@@ -229,7 +229,7 @@ TEST(LoadVrml, UnknownFieldsAreDroppedWithAWarning) {
       "  geometry " +
       cube_face_set() + " }\n";
   std::vector<std::string> warnings;
-  LoadOptions options;
+  LoadParams options;
   options.on_warning = [&](const std::string& w) { warnings.push_back(w); };
   const Scene scene = load_model(write_text("unknown.wrl", text), options);
   EXPECT_EQ(scene.triangle_count(), 12u);
@@ -257,7 +257,7 @@ TEST(LoadVrml, Vrml1SeparatorStateMaterialBindingAndClockwiseHints) {
   ASSERT_EQ(m.colors.size(), m.vertex_count());
   EXPECT_EQ(m.colors[m.indices[0]], glm::vec3(1, 0, 0));
   EXPECT_EQ(m.colors[m.indices[3]], glm::vec3(0, 0, 1));
-  for (const glm::vec3& p : m.positions) EXPECT_EQ(p.z, 3.0f);
+  for (const glm::vec3& p : m.positions_mm) EXPECT_EQ(p.z, 3.0f);
   // Clockwise in the file, so reversed: the front faces +z.
   for (const glm::vec3& n : m.normals) EXPECT_NEAR(n.z, 1.0f, 1e-6f);
 }

@@ -9,7 +9,7 @@ namespace {
 
 Mesh tetrahedron() {
   Mesh m;
-  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  m.positions_mm = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0, 0, 1}};
   m.indices = {0, 2, 1, 0, 1, 3, 0, 3, 2, 1, 2, 3};
   compute_vertex_normals(m);
   return m;
@@ -35,7 +35,7 @@ TEST(MeshTopology, OpenFlippedAndNonManifold) {
   EXPECT_EQ(analyze_topology(flipped).misoriented_edges, 3u);
 
   Mesh fin = tetrahedron();
-  fin.positions.push_back({1, 1, 0});
+  fin.positions_mm.push_back({1, 1, 0});
   fin.normals.push_back({0, 0, 1});
   fin.indices.insert(fin.indices.end(), {1, 2, 4});
   EXPECT_EQ(analyze_topology(fin).nonmanifold_edges, 1u);
@@ -46,7 +46,7 @@ TEST(ComputeVertexNormals, PointOutwardOnATetrahedron) {
   const Mesh m = tetrahedron();
   const glm::vec3 centre(0.25f);
   for (std::size_t v = 0; v < m.vertex_count(); ++v)
-    EXPECT_GT(glm::dot(m.normals[v], m.positions[v] - centre), 0.0f);
+    EXPECT_GT(glm::dot(m.normals[v], m.positions_mm[v] - centre), 0.0f);
 }
 
 }  // namespace

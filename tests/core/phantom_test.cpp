@@ -32,7 +32,7 @@ const Mesh& skin() {
 }
 
 glm::dvec3 corner(const Mesh& m, std::size_t t, int k) {
-  return glm::dvec3(m.positions[m.indices[3 * t + k]]);
+  return glm::dvec3(m.positions_mm[m.indices[3 * t + k]]);
 }
 
 double min_angle_deg(const Mesh& m, std::size_t t) {
@@ -73,7 +73,7 @@ void expect_star_shaped(const Mesh& m, glm::dvec3 centre) {
   EXPECT_NEAR(solid_angle, 4.0 * std::numbers::pi, 1e-6);
   std::size_t inward = 0;
   for (std::size_t v = 0; v < m.vertex_count(); ++v) {
-    if (!(glm::dot(glm::dvec3(m.normals[v]), glm::dvec3(m.positions[v]) - centre) > 0.0)) ++inward;
+    if (!(glm::dot(glm::dvec3(m.normals[v]), glm::dvec3(m.positions_mm[v]) - centre) > 0.0)) ++inward;
     EXPECT_NEAR(glm::length(m.normals[v]), 1.0f, 1e-5f);
   }
   EXPECT_EQ(inward, 0u) << "vertex normals pointing toward the star centre";
@@ -116,36 +116,36 @@ TEST(Phantoms, TooFewVerticesAreAnError) {
 
 TEST(Phantoms, AreTheSameBitForBitOnEveryCall) {
   const Mesh b = make_brain_phantom();
-  EXPECT_TRUE(b.positions == brain().positions);
+  EXPECT_TRUE(b.positions_mm == brain().positions_mm);
   EXPECT_TRUE(b.normals == brain().normals);
   EXPECT_TRUE(b.indices == brain().indices);
   const Mesh s = make_skin_phantom();
-  EXPECT_TRUE(s.positions == skin().positions);
+  EXPECT_TRUE(s.positions_mm == skin().positions_mm);
   EXPECT_TRUE(s.indices == skin().indices);
 }
 
 TEST(BrainPhantom, HasTheSizeOfAnAdultBrainAroundTheOrigin) {
   const Bounds b = bounds(brain());
-  EXPECT_NEAR(b.size().x, 140.0f, 4.0f);  // width
-  EXPECT_NEAR(b.size().y, 165.0f, 4.0f);  // length, front to back
-  EXPECT_NEAR(b.size().z, 115.0f, 5.0f);  // height
-  EXPECT_LT(glm::length(b.center()), 3.0f);
+  EXPECT_NEAR(b.size_mm().x, 140.0f, 4.0f);  // width
+  EXPECT_NEAR(b.size_mm().y, 165.0f, 4.0f);  // length, front to back
+  EXPECT_NEAR(b.size_mm().z, 115.0f, 5.0f);  // height
+  EXPECT_LT(glm::length(b.center_mm()), 3.0f);
 }
 
 TEST(SkinPhantom, HasTheSizeOfAHeadWithAFaceInFront) {
   const Bounds b = bounds(skin());
-  EXPECT_NEAR(b.size().x, 158.0f, 8.0f);
-  EXPECT_GT(b.max.y, 105.0f);   // the nose
-  EXPECT_LT(b.min.z, -180.0f);  // the neck
+  EXPECT_NEAR(b.size_mm().x, 158.0f, 8.0f);
+  EXPECT_GT(b.max_mm.y, 105.0f);   // the nose
+  EXPECT_LT(b.min_mm.z, -180.0f);  // the neck
   // Back of the head to the forehead, at the level of the brain's centre: about 190 mm.
   float back = 0.0f, front = 0.0f;
-  for (const glm::vec3& p : skin().positions) {
+  for (const glm::vec3& p : skin().positions_mm) {
     if (std::abs(p.x) < 3.0f && std::abs(p.z) < 3.0f)
       back = std::min(back, p.y), front = std::max(front, p.y);
   }
   EXPECT_NEAR(front - back, 192.0f, 8.0f);
   // The nose is the frontmost part, in the middle, below the eyes.
-  const auto nose = *std::max_element(skin().positions.begin(), skin().positions.end(),
+  const auto nose = *std::max_element(skin().positions_mm.begin(), skin().positions_mm.end(),
                                       [](glm::vec3 p, glm::vec3 q) { return p.y < q.y; });
   EXPECT_LT(std::abs(nose.x), 3.0f);
   EXPECT_LT(nose.z, -40.0f);
@@ -227,8 +227,8 @@ TEST(Phantoms, SkinEnclosesTheBrainWithRoomForSkullAndCsf) {
   // Skin triangles binned by the columns (x, y) their bounding boxes cover.
   const Bounds sb = bounds(s);
   const double cell = 4.0;
-  const glm::dvec2 origin(sb.min.x - 1.0, sb.min.y - 1.0);
-  const int width = int((sb.size().x + 2.0) / cell) + 1, height = int((sb.size().y + 2.0) / cell) + 1;
+  const glm::dvec2 origin(sb.min_mm.x - 1.0, sb.min_mm.y - 1.0);
+  const int width = int((sb.size_mm().x + 2.0) / cell) + 1, height = int((sb.size_mm().y + 2.0) / cell) + 1;
   std::vector<std::vector<std::uint32_t>> columns(std::size_t(width) * std::size_t(height));
   for (std::uint32_t t = 0; t < s.triangle_count(); ++t) {
     glm::dvec2 lo(1e9), hi(-1e9);
@@ -252,10 +252,10 @@ TEST(Phantoms, SkinEnclosesTheBrainWithRoomForSkullAndCsf) {
     }
   }
   constexpr double margin = 8.0;
-  const PointGrid skin_points(s.positions, 8.0f);
+  const PointGrid skin_points(s.positions_mm, 8.0f);
   std::size_t outside = 0, too_close = 0, measured = 0;
   double smallest_gap = 1e9;
-  for (const glm::vec3& p : brain().positions) {
+  for (const glm::vec3& p : brain().positions_mm) {
     if (!inside(s, columns, origin, cell, width, glm::dvec3(p))) ++outside;
     std::vector<std::uint32_t> near;
     skin_points.near(p, float(margin + longest), [&](std::uint32_t v) { near.push_back(v); });
@@ -300,7 +300,8 @@ class SurfaceDistances {
       queue.pop();
       if (d > distance_[v] || d > limit) continue;
       for (std::uint32_t w : next_[v]) {
-        const double via = d + glm::length(glm::dvec3(mesh_.positions[v]) - glm::dvec3(mesh_.positions[w]));
+        const double via =
+            d + glm::length(glm::dvec3(mesh_.positions_mm[v]) - glm::dvec3(mesh_.positions_mm[w]));
         if (via < distance_[w]) set(w, via), queue.push({via, w});
       }
     }
@@ -322,7 +323,7 @@ class SurfaceDistances {
 TEST(BrainPhantom, HasADeepLongitudinalFissureOverTheTop) {
   // Over the middle of the top, the surface on the midline is the fissure's bottom.
   float top = -1e9f, midline = -1e9f;
-  for (const glm::vec3& p : brain().positions) {
+  for (const glm::vec3& p : brain().positions_mm) {
     if (std::abs(p.y) > 20.0f) continue;
     top = std::max(top, p.z);
     if (std::abs(p.x) < 0.75f) midline = std::max(midline, p.z);
@@ -335,19 +336,19 @@ TEST(BrainPhantom, FissureBanksAreCloseInSpaceButFarApartAlongTheSurface) {
   // The limitation of a Euclidean falloff the paper names: points a few mm apart across the fissure are
   // more than 30 mm apart along the surface, down one bank and up the other.
   const Mesh& b = brain();
-  const PointGrid grid(b.positions, 4.0f);
+  const PointGrid grid(b.positions_mm, 4.0f);
   SurfaceDistances surface(b);
   std::size_t pairs = 0;
   double closest = 1e9, furthest_along = 0.0;
   for (std::uint32_t v = 0; v < b.vertex_count() && pairs < 5; ++v) {
-    const glm::vec3 p = b.positions[v];
+    const glm::vec3 p = b.positions_mm[v];
     // On the right bank, halfway down, over the middle of the top.
     if (p.x <= 0.0f || p.x > 4.0f || std::abs(p.y) > 10.0f || p.z < 42.0f || p.z > 50.0f) continue;
     std::uint32_t across = v;
     double nearest = 5.0;
     grid.near(p, 5.0f, [&](std::uint32_t w) {
-      const double d = glm::length(b.positions[w] - p);
-      if (b.positions[w].x < 0.0f && d < nearest) nearest = d, across = w;
+      const double d = glm::length(b.positions_mm[w] - p);
+      if (b.positions_mm[w].x < 0.0f && d < nearest) nearest = d, across = w;
     });
     if (across == v) continue;
     const double along = surface.from(v, 100.0)[across];
@@ -365,15 +366,15 @@ TEST(BrainPhantom, SulciMakeNeighboursInSpaceFarApartAlongTheSurface) {
   // Away from the fissure, the banks of narrow deep sulci: many vertices have another within 5 mm in
   // space that is more than 15 mm away along the surface (a smooth or egg-crate surface has none).
   const Mesh& b = brain();
-  const PointGrid grid(b.positions, 4.0f);
+  const PointGrid grid(b.positions_mm, 4.0f);
   SurfaceDistances surface(b);
   std::size_t seeds = 0, across_sulcus = 0;
   for (std::uint32_t v = 0; v < b.vertex_count(); v += 53) {
-    if (std::abs(b.positions[v].x) < 30.0f) continue;
+    if (std::abs(b.positions_mm[v].x) < 30.0f) continue;
     ++seeds;
     const std::vector<double>& along = surface.from(v, 15.0);
     bool found = false;
-    grid.near(b.positions[v], 5.0f, [&](std::uint32_t w) { found = found || along[w] > 15.0; });
+    grid.near(b.positions_mm[v], 5.0f, [&](std::uint32_t w) { found = found || along[w] > 15.0; });
     if (found) ++across_sulcus;
   }
   ASSERT_GT(seeds, 300u);

@@ -18,8 +18,8 @@ TEST_P(SphereCount, HasExactlyTheVerticesAskedAndIsClosed) {
   EXPECT_EQ(m.triangle_count(), 2 * GetParam() - 4);
   test::expect_sphere_topology(m);
   for (std::size_t v = 0; v < m.vertex_count(); ++v) {
-    EXPECT_NEAR(glm::length(m.positions[v]), 10.0f, 1e-4f);
-    EXPECT_GT(glm::dot(m.normals[v], m.positions[v]), 9.9f);  // outward
+    EXPECT_NEAR(glm::length(m.positions_mm[v]), 10.0f, 1e-4f);
+    EXPECT_GT(glm::dot(m.normals[v], m.positions_mm[v]), 9.9f);  // outward
   }
 }
 
@@ -30,7 +30,7 @@ TEST(BumpySphere, HasTheEvenTriangleCountNearestAndBumpsWithinRange) {
   EXPECT_EQ(m.triangle_count(), 53022u);
   test::expect_sphere_topology(m);
   float lo = 1e9f, hi = 0.0f;
-  for (const glm::vec3& p : m.positions) {
+  for (const glm::vec3& p : m.positions_mm) {
     lo = std::min(lo, glm::length(p));
     hi = std::max(hi, glm::length(p));
   }
@@ -44,12 +44,12 @@ TEST(Box, IsClosedWithOutwardNormals) {
   const MeshTopology t = analyze_topology(m);
   EXPECT_TRUE(t.closed());
   EXPECT_TRUE(t.oriented());
-  for (std::size_t v = 0; v < 8; ++v) EXPECT_GT(glm::dot(m.normals[v], m.positions[v]), 0.0f);
+  for (std::size_t v = 0; v < 8; ++v) EXPECT_GT(glm::dot(m.normals[v], m.positions_mm[v]), 0.0f);
   // Orientation: the signed volume of an outward-oriented box is positive.
   float volume = 0.0f;
   for (std::size_t t3 = 0; t3 < m.indices.size(); t3 += 3) {
-    volume += glm::dot(m.positions[m.indices[t3]],
-                       glm::cross(m.positions[m.indices[t3 + 1]], m.positions[m.indices[t3 + 2]])) /
+    volume += glm::dot(m.positions_mm[m.indices[t3]],
+                       glm::cross(m.positions_mm[m.indices[t3 + 1]], m.positions_mm[m.indices[t3 + 2]])) /
               6.0f;
   }
   EXPECT_NEAR(volume, 48.0f, 1e-4f);

@@ -15,7 +15,7 @@ TriangleSoup folded_strip(float fold) {
   const glm::vec3 a(0, 0, 0), b(1, 0, 0), c(1, 1, 0), d(0, 1, 0);
   const glm::vec3 e(1 + std::cos(fold), 0, std::sin(fold));
   TriangleSoup soup;
-  soup.positions = {a, b, c, a, c, d, b, e, c};
+  soup.positions_mm = {a, b, c, a, c, d, b, e, c};
   return soup;
 }
 
@@ -31,7 +31,7 @@ TEST(MeshFromSoup, SmoothNormalIsAreaWeighted) {
   // 90°, normal -x): the sum is (-1, 0, 1)/2, so the normal is at 45°.
   const Mesh m = mesh_from_soup(folded_strip(std::numbers::pi_v<float> / 2), std::numbers::pi_v<float>);
   for (std::size_t v = 0; v < m.vertex_count(); ++v) {
-    if (m.positions[v] == glm::vec3(1, 0, 0)) {
+    if (m.positions_mm[v] == glm::vec3(1, 0, 0)) {
       EXPECT_NEAR(m.normals[v].x, -std::sqrt(0.5f), 1e-6f);
       EXPECT_NEAR(m.normals[v].z, std::sqrt(0.5f), 1e-6f);
     }
@@ -50,7 +50,7 @@ TEST(MeshFromSoup, ColoursSplitVertices) {
 
 TEST(WeldPositions, MergesEqualPositionsAndKeepsAgreeingNormals) {
   Mesh m;
-  m.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  m.positions_mm = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
   m.normals.assign(6, glm::vec3(0, 0, 1));
   m.indices = {0, 1, 2, 3, 4, 5};
   weld_positions(m);

@@ -59,7 +59,7 @@ TEST(Window, WithoutADisplayIsAClearError) {
   const char* wayland = std::getenv("WAYLAND_DISPLAY");
   if ((display && *display) || (wayland && *wayland)) GTEST_SKIP() << "a display is present";
   try {
-    Window window(WindowOptions{});
+    Window window(WindowParams{});
     FAIL() << "a window opened without a display";
   } catch (const Error& e) {
     EXPECT_THAT(e.what(), testing::HasSubstr("cannot"));

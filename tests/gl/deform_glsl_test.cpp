@@ -77,7 +77,8 @@ Captured capture(const Mesh& mesh, std::span<const Dent> dents, int dent_slots =
   GLuint vao = 0, buffers[3] = {};
   glCreateVertexArrays(1, &vao);
   glCreateBuffers(3, buffers);
-  glNamedBufferStorage(buffers[0], static_cast<GLsizeiptr>(n * sizeof(glm::vec3)), mesh.positions.data(), 0);
+  glNamedBufferStorage(buffers[0], static_cast<GLsizeiptr>(n * sizeof(glm::vec3)), mesh.positions_mm.data(),
+                       0);
   glNamedBufferStorage(buffers[1], static_cast<GLsizeiptr>(n * sizeof(glm::vec3)), mesh.normals.data(), 0);
   glNamedBufferStorage(buffers[2], static_cast<GLsizeiptr>(3 * n * sizeof(glm::vec3)), nullptr, 0);
   for (GLuint i = 0; i < 2; ++i) {
@@ -137,7 +138,7 @@ TEST_F(DentedSphere, DisplacedPositionsEqualTheCpuReference) {
   std::size_t moved = 0;
   float worst_relative = 0.0f, worst_displacement = 0.0f;
   for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
-    const glm::vec3 v = mesh.positions[i], n = glm::normalize(mesh.normals[i]);
+    const glm::vec3 v = mesh.positions_mm[i], n = glm::normalize(mesh.normals[i]);
     const glm::vec3 cpu = displaced_position(v, n, dents);
     worst_relative = std::max(worst_relative, glm::distance(gpu.displaced[i], cpu) / glm::length(cpu));
     // The fragment stage's own evaluation of the displacement, with which it lights the fragment.
@@ -156,7 +157,7 @@ TEST_F(DentedSphere, PerturbedNormalsEqualTheCpuReference) {
   const Captured gpu = capture(mesh, dents);
   float worst = 0.0f, largest_tilt = 0.0f;
   for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
-    const glm::vec3 cpu = perturbed_normal(glm::normalize(mesh.normals[i]), mesh.positions[i], dents);
+    const glm::vec3 cpu = perturbed_normal(glm::normalize(mesh.normals[i]), mesh.positions_mm[i], dents);
     EXPECT_NEAR(glm::length(gpu.perturbed[i]), 1.0f, 1e-5f);
     worst = std::max(worst, angle_deg(gpu.perturbed[i], cpu));
     largest_tilt = std::max(largest_tilt, angle_deg(cpu, mesh.normals[i]));
@@ -169,7 +170,7 @@ TEST_F(DentedSphere, FewerSlotsThanDentsIgnoreTheRest) {
   const Captured gpu = capture(mesh, dents, 1);
   const std::span<const Dent> first(dents.data(), 1);
   for (std::size_t i = 0; i < mesh.vertex_count(); i += 7) {
-    const glm::vec3 v = mesh.positions[i], n = glm::normalize(mesh.normals[i]);
+    const glm::vec3 v = mesh.positions_mm[i], n = glm::normalize(mesh.normals[i]);
     EXPECT_LE(glm::distance(gpu.displaced[i], displaced_position(v, n, first)), 1e-4f);
   }
 }
@@ -184,7 +185,7 @@ TEST_F(DentedSphere, UpToMaxDentsSuperposeAndTheRestAreDropped) {
   const Captured gpu = capture(mesh, many);
   const std::span<const Dent> kept(many.data(), max_dents);
   for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
-    const glm::vec3 v = mesh.positions[i], n = glm::normalize(mesh.normals[i]);
+    const glm::vec3 v = mesh.positions_mm[i], n = glm::normalize(mesh.normals[i]);
     ASSERT_LE(glm::distance(gpu.displaced[i], displaced_position(v, n, kept)), 1e-4f) << "vertex " << i;
   }
 }

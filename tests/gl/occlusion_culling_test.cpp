@@ -34,8 +34,8 @@ Camera camera(glm::vec3 eye, glm::vec3 target, float near_mm, glm::vec3 up = {0,
 
 // The whole head in view from `direction` (outside), as bench render frames it.
 Camera outside(const Scene& scene, glm::vec3 direction) {
-  const glm::vec3 center = world_bounds(scene).center();
-  const float distance = 0.5f * glm::length(world_bounds(scene).size()) / std::sin(glm::radians(20.0f));
+  const glm::vec3 center = world_bounds(scene).center_mm();
+  const float distance = 0.5f * glm::length(world_bounds(scene).size_mm()) / std::sin(glm::radians(20.0f));
   return camera(center + distance * glm::normalize(direction), center, 0.05f * distance);
 }
 
@@ -60,7 +60,7 @@ class SceneTarget {
     target_.bind();
     glClearColor(0, 0, 0, 0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    DrawOptions options;
+    DrawParams options;
     options.occlusion_culling = culling;
     options.read_occlusion_results = true;
     Frame frame;
@@ -101,8 +101,8 @@ std::size_t covered_pixels(const std::vector<std::uint8_t>& pixels) {
 // The skin vertex that reaches furthest toward `direction` from the scene's centre, where a dent there
 // faces a camera placed along it.
 glm::vec3 skin_point_toward(const Scene& scene, glm::vec3 direction) {
-  const glm::vec3 center = world_bounds(scene).center();
-  const auto& positions = scene.objects[skin].mesh.positions;
+  const glm::vec3 center = world_bounds(scene).center_mm();
+  const auto& positions = scene.objects[skin].mesh.positions_mm;
   return *std::max_element(positions.begin(), positions.end(), [&](glm::vec3 a, glm::vec3 b) {
     return glm::dot(a - center, direction) < glm::dot(b - center, direction);
   });
@@ -141,7 +141,7 @@ TEST(OcclusionCulling, FromInsideTheSkinTheBrainIsDrawn) {
   const Scene scene = default_scene_with(true);
   const Scene brain_alone = default_scene_with(false);
   SceneTarget target(scene), reference(brain_alone);
-  const auto& positions = scene.objects[brain].mesh.positions;
+  const auto& positions = scene.objects[brain].mesh.positions_mm;
   const float top = std::max_element(positions.begin(), positions.end(), [](glm::vec3 a, glm::vec3 b) {
                       return a.z < b.z;
                     })->z;
@@ -190,7 +190,7 @@ TEST(OcclusionCulling, ABrainPushedOutThroughTheSkinIsDrawn) {
   const Scene scene = default_scene_with(true);
   SceneTarget target(scene);
   const glm::vec3 direction(0.15f, -1.0f, 0.35f);
-  const auto& positions = scene.objects[brain].mesh.positions;
+  const auto& positions = scene.objects[brain].mesh.positions_mm;
   const glm::vec3 bulge = *std::max_element(
       positions.begin(), positions.end(),
       [&](glm::vec3 a, glm::vec3 b) { return glm::dot(a, direction) < glm::dot(b, direction); });

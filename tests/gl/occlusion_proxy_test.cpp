@@ -22,7 +22,7 @@ namespace {
 
 std::vector<glm::vec3> transformed(const Mesh& mesh, const glm::mat4& transform) {
   std::vector<glm::vec3> world;
-  for (const glm::vec3& p : mesh.positions) world.emplace_back(transform * glm::vec4(p, 1.0f));
+  for (const glm::vec3& p : mesh.positions_mm) world.emplace_back(transform * glm::vec4(p, 1.0f));
   return world;
 }
 

@@ -44,7 +44,7 @@ Camera looking_at(glm::vec3 eye, glm::vec3 target) {
 // Renders `scene` with `dents` into a fresh target and returns its pixels (RGBA, float or 8-bit).
 template <class Pixel>
 std::vector<Pixel> render(const Scene& scene, const Camera& camera, std::span<const ObjectDent> dents,
-                          DrawOptions options) {
+                          DrawParams options) {
   const Framebuffer target(
       {size, size, std::is_same_v<Pixel, float> ? ColorFormat::rgba32f : ColorFormat::rgba8});
   target.bind();
@@ -61,8 +61,8 @@ std::vector<Pixel> render(const Scene& scene, const Camera& camera, std::span<co
   }
 }
 
-DrawOptions normals_options(Deformation deformation) {
-  DrawOptions options;
+DrawParams normals_options(Deformation deformation) {
+  DrawParams options;
   options.deformation = deformation;
   options.shading = Shading::normals;
   return options;
@@ -102,7 +102,7 @@ void expect_true_normals(const Mesh& mesh, const Dent& dent, const Camera& camer
   const auto reference = render<float>(reference_scene, camera, {}, normals_options(Deformation::none));
   const auto undeformed = render<float>(original, camera, {}, normals_options(Deformation::none));
   const auto gpu = render<float>(original, camera, dents, normals_options(Deformation::gpu));
-  DrawOptions every_triangle = normals_options(Deformation::gpu);
+  DrawParams every_triangle = normals_options(Deformation::gpu);
   every_triangle.skip_unreached = false;
   EXPECT_EQ(gpu, render<float>(original, camera, dents, every_triangle))
       << "drawing unreached triangles with the plain shader changed the image";
@@ -158,18 +158,18 @@ struct Bumpy : testing::Test {
     test::gl_context();
     scene.objects[0].mesh.colors.resize(scene.objects[0].mesh.vertex_count());
     for (std::size_t i = 0; i < scene.objects[0].mesh.vertex_count(); ++i) {
-      scene.objects[0].mesh.colors[i] = glm::abs(glm::normalize(scene.objects[0].mesh.positions[i]));
+      scene.objects[0].mesh.colors[i] = glm::abs(glm::normalize(scene.objects[0].mesh.positions_mm[i]));
     }
   }
 };
 
 TEST_F(Bumpy, ZeroDepthGivesTheUndeformedImageBitForBit) {
-  DrawOptions plain;
+  DrawParams plain;
   plain.deformation = Deformation::none;
   const auto undeformed = render<std::uint8_t>(scene, camera, {}, plain);
   const ObjectDent flat[] = {{0, {contact, 0.0f, 6.0f}}};
   for (bool skip_unreached : {true, false}) {
-    DrawOptions options;
+    DrawParams options;
     options.skip_unreached = skip_unreached;
     EXPECT_EQ(render<std::uint8_t>(scene, camera, flat, options), undeformed)
         << "skip_unreached " << skip_unreached;
@@ -186,7 +186,7 @@ TEST_F(Bumpy, CpuNaiveAndGpuDrawTheSameDentOnASmoothSphere) {
   // that the two paths differ by how they treat the dent only.
   compute_vertex_normals(scene.objects[0].mesh);
   const ObjectDent dents[] = {{0, {contact, 4.0f, 6.0f}}};
-  DrawOptions naive, none;
+  DrawParams naive, none;
   naive.deformation = Deformation::cpu_naive;
   none.deformation = Deformation::none;
   const auto gpu = render<std::uint8_t>(scene, camera, dents, {});
@@ -224,14 +224,14 @@ TEST(RendererDents, AContactDentsOnlyTheObjectItTouchesWithThatObjectsSigma) {
   const Camera camera = looking_at({0.0f, -200.0f, 0.0f}, {0, 0, 0});
   Contact contact;
   contact.object = 1;
-  contact.point = {40.0f, -30.0f, 0.0f};
-  contact.hip = {40.0f, -26.0f, 0.0f};
+  contact.point_mm = {40.0f, -30.0f, 0.0f};
+  contact.hip_mm = {40.0f, -26.0f, 0.0f};
   contact.depth_mm = 4.0f;
 
   const Framebuffer target({size, size});
   Renderer renderer;
   renderer.upload(scene);
-  DrawOptions options;
+  DrawParams options;
   options.draw_probe = false;
   const auto frame = [&](auto&& draw) {
     target.bind();
@@ -246,7 +246,7 @@ TEST(RendererDents, AContactDentsOnlyTheObjectItTouchesWithThatObjectsSigma) {
   });
   EXPECT_EQ(result.deformed_objects, 1);
   EXPECT_EQ(result.dropped_dents, 0);
-  const ObjectDent explicit_dent[] = {{1, {contact.point, 4.0f, 8.0f}}};
+  const ObjectDent explicit_dent[] = {{1, {contact.point_mm, 4.0f, 8.0f}}};
   EXPECT_EQ(by_contact,
             frame([&] { renderer.draw(camera.view, camera.projection, explicit_dent, options); }));
   const auto undeformed =
@@ -349,13 +349,13 @@ TEST(RendererState, LeavesTheHostsGlStateAsItFoundItAndIgnoresIt) {
   const Camera camera = looking_at({0.0f, -140.0f, 40.0f}, {0, 0, 0});
   Contact contact;
   contact.object = 0;
-  contact.point = glm::normalize(glm::vec3(0.1f, -1.0f, 0.3f)) * 40.0f;
-  contact.hip = contact.point * 0.95f;
+  contact.point_mm = glm::normalize(glm::vec3(0.1f, -1.0f, 0.3f)) * 40.0f;
+  contact.hip_mm = contact.point_mm * 0.95f;
   contact.depth_mm = 3.0f;
   const Framebuffer target({size, size});
   Renderer renderer;
   renderer.upload(scene);
-  DrawOptions options;
+  DrawParams options;
   options.draw_contact_points = true;
   options.read_occlusion_results = true;
   const auto frame = [&] {

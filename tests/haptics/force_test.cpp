@@ -14,8 +14,8 @@ Contact pressed(float depth_mm = 2.0f, glm::vec3 normal = {0.0f, 0.0f, 1.0f}) {
   c.object = 0;
   c.triangle = 5;
   c.normal = normal;
-  c.point = {1.0f, 2.0f, 0.0f};
-  c.hip = c.point - depth_mm * normal;
+  c.point_mm = {1.0f, 2.0f, 0.0f};
+  c.hip_mm = c.point_mm - depth_mm * normal;
   c.depth_mm = depth_mm;
   return c;
 }
@@ -66,10 +66,10 @@ TEST(SpringDamper, NonFiniteInputGivesZeroForceAndAFlag) {
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
   std::vector<std::pair<const char*, ForceResult>> cases;
   Contact c = pressed();
-  c.hip.x = nan;
+  c.hip_mm.x = nan;
   cases.push_back({"hip", spring_damper(c, glm::vec3(0.0f), material, 10.0f)});
   c = pressed();
-  c.point.z = inf;
+  c.point_mm.z = inf;
   cases.push_back({"point", spring_damper(c, glm::vec3(0.0f), material, 10.0f)});
   c = pressed();
   c.normal.y = nan;
@@ -84,8 +84,8 @@ TEST(SpringDamper, NonFiniteInputGivesZeroForceAndAFlag) {
   cases.push_back({"limit", spring_damper(pressed(), glm::vec3(0.0f), material, nan)});
   // Finite but so far apart that the spring overflows.
   c = pressed();
-  c.hip = {-3e38f, 0.0f, 0.0f};
-  c.point = {3e38f, 0.0f, 0.0f};
+  c.hip_mm = {-3e38f, 0.0f, 0.0f};
+  c.point_mm = {3e38f, 0.0f, 0.0f};
   cases.push_back({"overflow", spring_damper(c, glm::vec3(0.0f), material, 10.0f)});
   for (const auto& [what, f] : cases) {
     EXPECT_TRUE(f.invalid_input) << what;

@@ -114,7 +114,7 @@ TEST(HapticPipelineTest, DeviceFrameIsScaledRotatedAndMovedIntoTheScene) {
   DeviceTransform transform;
   transform.scale = 2.0f;
   transform.rotation = glm::mat3(glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), {0, 0, 1}));
-  transform.translation = {30, 0, 10};
+  transform.translation_mm = {30, 0, 10};
   // 1.5 device mm below the device origin: 3 scene mm into the stiff cube.
   DeviceLimits roomy;
   roomy.max_force_n = 100.0f;
@@ -122,16 +122,16 @@ TEST(HapticPipelineTest, DeviceFrameIsScaledRotatedAndMovedIntoTheScene) {
   HapticPipeline pipeline(device, scene, bvh, transform);
   const TickResult result = run(pipeline, 300);
   ASSERT_TRUE(result.contact.in_contact());
-  EXPECT_NEAR(result.contact.hip.x, 30.0f, 1e-4f);
-  EXPECT_NEAR(result.contact.hip.z, 7.0f, 1e-4f);
+  EXPECT_NEAR(result.contact.hip_mm.x, 30.0f, 1e-4f);
+  EXPECT_NEAR(result.contact.hip_mm.z, 7.0f, 1e-4f);
   EXPECT_NEAR(result.contact.depth_mm, 3.0f, 0.01f);
   EXPECT_NEAR(result.force_n.z, 0.8f * 3.0f, 0.05f);
   // Off-centre: a device +x step is a scene +y step (rotation) of twice the length (scale).
   ScriptedDevice stepped(press({1, 0, 0}, {0, 0, 1}, 1.5f), false, roomy);
   HapticPipeline stepped_pipeline(stepped, scene, bvh, transform);
   const TickResult moved = run(stepped_pipeline, 300);
-  EXPECT_NEAR(moved.contact.hip.x, 30.0f, 1e-4f);
-  EXPECT_NEAR(moved.contact.hip.y, 2.0f, 1e-4f);
+  EXPECT_NEAR(moved.contact.hip_mm.x, 30.0f, 1e-4f);
+  EXPECT_NEAR(moved.contact.hip_mm.y, 2.0f, 1e-4f);
   // A force along scene +y would reach the device along device -x; along z it stays along z.
   EXPECT_NEAR(transform.force_to_device({0, 1, 0}).x, 1.0f, 1e-6f);
   EXPECT_NEAR(stepped.last_force().z, moved.force_n.z, 1e-6f);
@@ -184,14 +184,14 @@ TEST(HapticPipelineTest, TheLoopCountsInvalidInputTicks) {
   EXPECT_EQ(stats.ticks, 30u);
   EXPECT_GE(stats.invalid_input_ticks, 1u);
   EXPECT_LE(stats.invalid_input_ticks, 10u);
-  EXPECT_EQ(loop.latest_contact().tick, 29u);
+  EXPECT_EQ(loop.latest().contact.tick, 29u);
 }
 
 TEST(DeviceTransformTest, MapsPointsVelocitiesAndForces) {
   DeviceTransform transform;
   transform.scale = 3.0f;
   transform.rotation = glm::mat3(glm::rotate(glm::mat4(1.0f), glm::radians(90.0f), {1, 0, 0}));  // y -> z
-  transform.translation = {1, 2, 3};
+  transform.translation_mm = {1, 2, 3};
   const glm::vec3 scene = transform.point_to_scene({0, 1, 0});
   EXPECT_NEAR(scene.x, 1.0f, 1e-5f);
   EXPECT_NEAR(scene.y, 2.0f, 1e-5f);

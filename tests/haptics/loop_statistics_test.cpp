@@ -143,7 +143,7 @@ TEST(LoopStatisticsTest, ScheduleAndFiguresOnAFakeClock) {
   EXPECT_EQ(stats.periods_us, (std::vector<float>{1000, 1000, 2500, 500, 1000}));
   // Less than a second run: 5 periods in 6 ms.
   EXPECT_NEAR(stats.achieved_hz, 5.0 / 0.006, 1e-9);
-  const Contact last = loop.latest_contact();
+  const Contact last = loop.latest().contact;
   EXPECT_EQ(last.tick, 5u);
   EXPECT_DOUBLE_EQ(last.time_s, 0.007);
   EXPECT_FALSE(last.in_contact());

@@ -25,8 +25,8 @@ void expect_near(glm::vec3 got, glm::vec3 want, float tolerance, const char* wha
   EXPECT_NEAR(got.z, want.z, tolerance) << what;
 }
 
-PressSlide flat_spec() {
-  PressSlide spec;
+PressSlideParams flat_spec() {
+  PressSlideParams spec;
   spec.surface_point_mm = {1.0f, 2.0f, 3.0f};
   spec.normal = {0.0f, 0.0f, 2.0f};           // normalised on use
   spec.slide_direction = {1.0f, 0.0f, 0.5f};  // projected onto the plane: +x
@@ -44,7 +44,7 @@ TEST(PressSlidePathTest, PhasesLastWhatTheSpeedsSay) {
 }
 
 TEST(PressSlidePathTest, FlatPathFollowsItsAnalyticPositions) {
-  const PressSlide spec = flat_spec();
+  const PressSlideParams spec = flat_spec();
   const PressSlidePath path(spec);
   const glm::vec3 p = spec.surface_point_mm, n{0, 0, 1}, t{1, 0, 0};
   expect_near(path.sample(0.0).position_mm, p + 20.0f * n, 1e-5f, "start 20 mm above");
@@ -69,7 +69,7 @@ TEST(PressSlidePathTest, FlatPathFollowsItsAnalyticPositions) {
 }
 
 TEST(PressSlidePathTest, SphericalSlideKeepsItsDepthBelowTheSphere) {
-  PressSlide spec;
+  PressSlideParams spec;
   spec.surface_point_mm = {0.0f, 0.0f, 50.0f};  // the top of a sphere of radius 50 about the origin
   spec.normal = {0.0f, 0.0f, 1.0f};
   spec.slide_direction = {0.0f, 1.0f, 0.0f};
@@ -92,7 +92,7 @@ TEST(PressSlidePathTest, SphericalSlideKeepsItsDepthBelowTheSphere) {
 
 TEST(PressSlidePathTest, VelocityIsTheDerivativeOfThePosition) {
   for (const float radius : {0.0f, 50.0f}) {
-    PressSlide spec = flat_spec();
+    PressSlideParams spec = flat_spec();
     spec.curvature_radius_mm = radius;
     spec.depth_cycles = 2.0f;
     const PressSlidePath path(spec);
@@ -111,7 +111,7 @@ TEST(PressSlidePathTest, VelocityIsTheDerivativeOfThePosition) {
 }
 
 TEST(PressSlidePathTest, RejectsBadSpecsNamingTheField) {
-  const auto message = [](PressSlide spec) {
+  const auto message = [](PressSlideParams spec) {
     try {
       PressSlidePath{spec};
     } catch (const Error& e) {
@@ -119,22 +119,22 @@ TEST(PressSlidePathTest, RejectsBadSpecsNamingTheField) {
     }
     return std::string("no error");
   };
-  PressSlide along_normal = flat_spec();
+  PressSlideParams along_normal = flat_spec();
   along_normal.slide_direction = {0.0f, 0.0f, -1.0f};
   EXPECT_NE(message(along_normal).find("slide_direction"), std::string::npos);
-  PressSlide zero_normal = flat_spec();
+  PressSlideParams zero_normal = flat_spec();
   zero_normal.normal = glm::vec3(0.0f);
   EXPECT_NE(message(zero_normal).find("normal"), std::string::npos);
-  PressSlide stopped = flat_spec();
+  PressSlideParams stopped = flat_spec();
   stopped.slide_speed_mm_per_s = 0.0f;
   EXPECT_NE(message(stopped).find("slide_speed_mm_per_s"), std::string::npos);
-  PressSlide tight = flat_spec();
+  PressSlideParams tight = flat_spec();
   tight.curvature_radius_mm = 3.0f;
   EXPECT_NE(message(tight).find("curvature_radius_mm"), std::string::npos);
-  PressSlide nan_point = flat_spec();
+  PressSlideParams nan_point = flat_spec();
   nan_point.surface_point_mm.x = std::nanf("");
   EXPECT_NE(message(nan_point).find("surface_point_mm"), std::string::npos);
-  PressSlide low_start = flat_spec();
+  PressSlideParams low_start = flat_spec();
   low_start.start_height_mm = -3.0f;
   EXPECT_NE(message(low_start).find("start_height_mm"), std::string::npos);
 }
@@ -145,13 +145,13 @@ TEST(PressSlidePathTest, AimsAtAVertexOfAnObjectInWorldCoordinates) {
   ball.mesh = make_sphere(30.0f, 2000);
   ball.transform = glm::translate(glm::mat4(1.0f), {100.0f, 0.0f, 0.0f});
   const std::size_t vertex = 700;
-  const glm::vec3 local = ball.mesh.positions[vertex];
-  const PressSlide aimed = aim_press_slide(ball, vertex, {0.0f, 0.0f, 1.0f});
+  const glm::vec3 local = ball.mesh.positions_mm[vertex];
+  const PressSlideParams aimed = aim_press_slide(ball, vertex, {0.0f, 0.0f, 1.0f});
   expect_near(aimed.surface_point_mm, local + glm::vec3(100.0f, 0.0f, 0.0f), 1e-4f, "the vertex, in world");
   // On a sphere the smoothed normal is the radial direction and the curvature its radius.
   expect_near(glm::normalize(aimed.normal), glm::normalize(local), 0.01f, "radial normal");
   EXPECT_NEAR(aimed.curvature_radius_mm, 30.0f, 0.05f);
-  EXPECT_EQ(aimed.press_depth_mm, PressSlide{}.press_depth_mm) << "other fields kept";
+  EXPECT_EQ(aimed.press_depth_mm, PressSlideParams{}.press_depth_mm) << "other fields kept";
   // The aimed path presses 2.5 mm into the ball along the radius.
   const PressSlidePath path(aimed);
   EXPECT_NEAR(glm::length(path.sample(path.approach_end_s()).position_mm - glm::vec3(100.0f, 0.0f, 0.0f)),

@@ -8,10 +8,10 @@
 #include <random>
 #include <string>
 
-#include "haptic_test_scenes.hpp"
 #include "palpate/core/bvh.hpp"
 #include "palpate/haptics/force.hpp"
 #include "palpate/haptics/proxy.hpp"
+#include "palpate/testing/surface_oracle.hpp"
 
 namespace palpate::test {
 namespace {
@@ -32,8 +32,8 @@ class MoveTester {
   MoveTester(const Scene& scene, std::uint32_t seed, const MoveOptions& options)
       : scene_(scene), bvh_(Bvh::build(scene)), reference_(scene), rng_(seed), options_(options) {
     const Bounds b = world_bounds(scene);
-    lo_ = glm::dvec3(b.min);
-    hi_ = glm::dvec3(b.max);
+    lo_ = glm::dvec3(b.min_mm);
+    hi_ = glm::dvec3(b.max_mm);
     const glm::dvec3 margin = 0.25 * (hi_ - lo_) + glm::dvec3(2.0);
     lo_ -= margin;
     hi_ += margin;
@@ -114,8 +114,8 @@ class MoveTester {
     for (;;) {
       const std::size_t t = std::size_t(uniform_int(0, int(m.triangle_count()) - 1));
       const auto at = [&](int k) {
-        return glm::dvec3(
-            glm::vec3(object->transform * glm::vec4(m.positions[m.indices[3 * t + std::size_t(k)]], 1.0f)));
+        return glm::dvec3(glm::vec3(object->transform *
+                                    glm::vec4(m.positions_mm[m.indices[3 * t + std::size_t(k)]], 1.0f)));
       };
       const glm::dvec3 a = at(0), b = at(1), c = at(2);
       const glm::dvec3 n = glm::cross(b - a, c - a);
@@ -132,14 +132,14 @@ class MoveTester {
 
   // One haptic tick with the HIP at `to`, and every check.
   void tick(glm::dvec3 to, double max_lag_mm = -1.0) {
-    const glm::dvec3 before = state_.position;
+    const glm::dvec3 before = state_.position_mm;
     hip_ = confine(to);
     const Contact c = proxy_step(state_, bvh_, glm::vec3(hip_), params_);
     ++ticks_;
     contact_ticks_ += c.in_contact();
     capped_ticks_ += state_.last_iterations >= params_.max_iterations;
-    const glm::dvec3 p = state_.position;
-    const glm::dvec3 h(c.hip);
+    const glm::dvec3 p = state_.position_mm;
+    const glm::dvec3 h(c.hip_mm);
     const auto fail = [&](const std::string& what) {
       ADD_FAILURE() << what << " at tick " << ticks_ << ": proxy (" << p.x << ", " << p.y << ", " << p.z
                     << ") hip (" << h.x << ", " << h.y << ", " << h.z << ") before (" << before.x << ", "
@@ -150,7 +150,7 @@ class MoveTester {
     if (options_.plate_top != 0.0f && plate_side_ * p.z <= options_.plate_top)
       fail("the proxy went through the plate");
     if (c.in_contact()) {
-      const glm::vec3 spring = c.point - c.hip;
+      const glm::vec3 spring = c.point_mm - c.hip_mm;
       if (!(std::abs(glm::length(c.normal) - 1.0f) < 1e-4f)) fail("contact normal not unit");
       if (!(std::abs(glm::length(spring) - c.depth_mm) < 1e-4f)) fail("depth is not |SCP - HIP|");
       if (glm::length(spring) > 1e-3f && glm::dot(spring, c.normal) < 0.99f * glm::length(spring)) {
@@ -258,7 +258,7 @@ class MoveTester {
 
   const Scene& scene_;
   Bvh bvh_;
-  InsideReference reference_;
+  testing::MeshOracle reference_;
   std::mt19937 rng_;
   MoveOptions options_;
   ProxyParams params_;

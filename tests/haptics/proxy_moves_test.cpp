@@ -4,8 +4,8 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
-#include "haptic_test_scenes.hpp"
 #include "palpate/core/shapes.hpp"
+#include "palpate/testing/test_shapes.hpp"
 #include "proxy_move_tester.hpp"
 
 namespace palpate {
@@ -14,34 +14,35 @@ namespace {
 using test::run_proxy_moves;
 
 TEST(ProxyMoves, Cube) {
-  run_proxy_moves(test::scene_of("cube", make_box(glm::vec3(40.0f))), 1,
+  run_proxy_moves(testing::scene_of("cube", make_box(glm::vec3(40.0f))), 1,
                   {.ticks = 150000, .slide_lag_allowance_mm = 1.0});
 }
 
 TEST(ProxyMoves, Sphere) {
-  run_proxy_moves(test::scene_of("sphere", make_sphere(30.0f, 1000)), 2,
+  run_proxy_moves(testing::scene_of("sphere", make_sphere(30.0f, 1000)), 2,
                   {.ticks = 150000, .release_check_every = 8, .slide_lag_allowance_mm = 1.0});
 }
 
 TEST(ProxyMoves, ThinPlate) {
   // 0.2 mm thick, 80 mm wide; the tip stays within 30 mm of the centre, mostly above.
-  run_proxy_moves(test::scene_of("plate", make_box({80.0f, 80.0f, 0.2f})), 3,
+  run_proxy_moves(testing::scene_of("plate", make_box({80.0f, 80.0f, 0.2f})), 3,
                   {.ticks = 150000, .confine_xy = 30.0f, .plate_top = 0.1f, .slide_lag_allowance_mm = 1.0});
 }
 
 TEST(ProxyMoves, BumpySphereOfBrainSize) {
   // The paper's brain face count (22,952): a stand-in for the phantom until it is merged.
-  run_proxy_moves(test::scene_of("bumpy sphere", make_bumpy_sphere(50.0f, 1.5f, 22952)), 4,
+  run_proxy_moves(testing::scene_of("bumpy sphere", make_bumpy_sphere(50.0f, 1.5f, 22952)), 4,
                   {.ticks = 200000, .release_check_every = 64, .slide_lag_allowance_mm = 3.5});
 }
 
 TEST(ProxyMoves, HollowBoxConcaveCornersFromInside) {
-  run_proxy_moves(test::scene_of("hollow box", test::make_hollow_box(40.0f, 20.0f)), 5, {.ticks = 100000});
+  run_proxy_moves(testing::scene_of("hollow box", testing::make_hollow_box(40.0f, 20.0f)), 5,
+                  {.ticks = 100000});
 }
 
 TEST(ProxyMoves, CombWithNarrowSlots) {
   // 1 mm slots 6 mm deep between 2 mm teeth: concave creases and convex edges close together.
-  run_proxy_moves(test::scene_of("comb", test::make_comb(8, 2.0f, 1.0f, 6.0f, 4.0f, 12.0f)), 6,
+  run_proxy_moves(testing::scene_of("comb", testing::make_comb(8, 2.0f, 1.0f, 6.0f, 4.0f, 12.0f)), 6,
                   {.ticks = 150000, .release_check_every = 2});
 }
 

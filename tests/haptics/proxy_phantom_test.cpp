@@ -4,8 +4,8 @@
 //
 #include <gtest/gtest.h>
 
-#include "haptic_test_scenes.hpp"
 #include "palpate/core/phantom.hpp"
+#include "palpate/testing/test_shapes.hpp"
 #include "proxy_move_tester.hpp"
 
 namespace palpate {
@@ -17,17 +17,17 @@ using test::run_proxy_moves;
 // check; release checks are brute force over every triangle, hence sampled. A tip jumping deep into the
 // folds (a quarter of the moves are such jumps) takes the proxy a few ticks to follow.
 TEST(ProxyMovesOnPhantoms, Brain) {
-  run_proxy_moves(test::scene_of("brain", make_brain_phantom()), 11,
+  run_proxy_moves(testing::scene_of("brain", make_brain_phantom()), 11,
                   {.ticks = 100000, .release_check_every = 256, .max_capped_fraction = 0.03});
 }
 
 TEST(ProxyMovesOnPhantoms, Skin) {
-  run_proxy_moves(test::scene_of("skin", make_skin_phantom()), 12,
+  run_proxy_moves(testing::scene_of("skin", make_skin_phantom()), 12,
                   {.ticks = 100000, .release_check_every = 256, .max_capped_fraction = 0.03});
 }
 
 TEST(ProxyMovesOnPhantoms, SkinAroundBrain) {
-  Scene scene = test::scene_of("skin", make_skin_phantom());
+  Scene scene = testing::scene_of("skin", make_skin_phantom());
   scene.objects.push_back({"brain", make_brain_phantom(), glm::mat4(1.0f), {}, {}});
   run_proxy_moves(scene, 13, {.ticks = 100000, .release_check_every = 512, .max_capped_fraction = 0.03});
 }

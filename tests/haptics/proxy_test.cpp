@@ -8,14 +8,14 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <limits>
 
-#include "haptic_test_scenes.hpp"
 #include "palpate/core/shapes.hpp"
 #include "palpate/haptics/force.hpp"
+#include "palpate/testing/test_shapes.hpp"
 
 namespace palpate {
 namespace {
 
-using test::scene_of;
+using testing::scene_of;
 
 constexpr double eps = ProxyParams{}.surface_epsilon_mm;
 
@@ -50,21 +50,21 @@ class ProxyOnCube : public ::testing::Test {
 TEST_F(ProxyOnCube, FollowsTheHipInFreeSpace) {
   const Contact c = move(state, bvh, hip, {-10.0, 25.0, 31.0}, 20);
   EXPECT_FALSE(c.in_contact());
-  expect_near(state.position, hip, 1e-12, "proxy");
-  EXPECT_EQ(glm::dvec3(c.point), glm::dvec3(c.hip));
+  expect_near(state.position_mm, hip, 1e-12, "proxy");
+  EXPECT_EQ(glm::dvec3(c.point_mm), glm::dvec3(c.hip_mm));
 }
 
 TEST_F(ProxyOnCube, RestsOnTheFaceAboveTheHipWithTheFaceNormal) {
   const Contact c = move(state, bvh, hip, {3.0, -4.0, 17.5}, 50);
   ASSERT_TRUE(c.in_contact());
-  expect_near(state.position, {3.0, -4.0, 20.0 + eps}, 1e-9, "proxy");
+  expect_near(state.position_mm, {3.0, -4.0, 20.0 + eps}, 1e-9, "proxy");
   EXPECT_EQ(c.object, 0);
   const Mesh& cube = scene.objects[0].mesh;
   for (int k = 0; k < 3; ++k)
-    EXPECT_EQ(cube.positions[cube.indices[3 * std::size_t(c.triangle) + k]].z, 20.0f);
+    EXPECT_EQ(cube.positions_mm[cube.indices[3 * std::size_t(c.triangle) + k]].z, 20.0f);
   EXPECT_NEAR(c.normal.z, 1.0f, 1e-6f);
   EXPECT_NEAR(c.depth_mm, 2.5 + eps, 1e-5);
-  EXPECT_NEAR(glm::length(glm::vec3(c.point) - c.hip), c.depth_mm, 1e-5f);
+  EXPECT_NEAR(glm::length(glm::vec3(c.point_mm) - c.hip_mm), c.depth_mm, 1e-5f);
   EXPECT_EQ(state.constraint_count, 1);
 }
 
@@ -75,8 +75,8 @@ TEST_F(ProxyOnCube, SlidesOnTheFaceAcrossItsTrianglesExactlyAboveTheHip) {
     hip = from + (glm::dvec3(-15.0, 12.0, 18.5) - from) * (i / 500.0);
     const Contact c = proxy_step(state, bvh, glm::vec3(hip));
     ASSERT_TRUE(c.in_contact()) << "step " << i;
-    const glm::dvec3 h(c.hip);  // the HIP as the proxy saw it, in float
-    expect_near(state.position, {h.x, h.y, 20.0 + eps}, 1e-9, "proxy");
+    const glm::dvec3 h(c.hip_mm);  // the HIP as the proxy saw it, in float
+    expect_near(state.position_mm, {h.x, h.y, 20.0 + eps}, 1e-9, "proxy");
   }
 }
 
@@ -86,7 +86,7 @@ TEST_F(ProxyOnCube, ReleasesAsSoonAsTheTipLeaves) {
   EXPECT_TRUE(c.in_contact());
   c = move(state, bvh, hip, {3.0, -4.0, 20.0 + 1e-2}, 1);
   EXPECT_FALSE(c.in_contact());
-  expect_near(state.position, glm::dvec3(c.hip), 1e-12, "proxy");
+  expect_near(state.position_mm, glm::dvec3(c.hip_mm), 1e-12, "proxy");
   EXPECT_EQ(state.constraint_count, 0);
 }
 
@@ -95,7 +95,7 @@ TEST_F(ProxyOnCube, HoldsToTheTopFaceWhenPushedDeepTowardTheSide) {
   move(state, bvh, hip, {15.0, 0.0, 17.0}, 50);
   const Contact c = move(state, bvh, hip, {19.5, 0.0, 5.0}, 200);
   ASSERT_TRUE(c.in_contact());
-  expect_near(state.position, {19.5, 0.0, 20.0 + eps}, 1e-9, "proxy");
+  expect_near(state.position_mm, {19.5, 0.0, 20.0 + eps}, 1e-9, "proxy");
 }
 
 TEST_F(ProxyOnCube, SlidesOffAConvexEdgeOnceTheTipIsPastIt) {
@@ -104,12 +104,12 @@ TEST_F(ProxyOnCube, SlidesOffAConvexEdgeOnceTheTipIsPastIt) {
   for (int i = 1; i <= 400; ++i) {
     hip = from + (glm::dvec3(25.0, 0.0, 15.0) - from) * (i / 400.0);
     proxy_step(state, bvh, glm::vec3(hip));
-    const glm::dvec3 p = state.position;
+    const glm::dvec3 p = state.position_mm;
     ASSERT_FALSE(p.x < 20.0 && p.z < 20.0) << "proxy inside the cube at step " << i;
   }
   const Contact c = proxy_step(state, bvh, glm::vec3(hip));
   EXPECT_FALSE(c.in_contact());
-  expect_near(state.position, glm::dvec3(c.hip), 1e-12, "proxy");
+  expect_near(state.position_mm, glm::dvec3(c.hip_mm), 1e-12, "proxy");
 }
 
 TEST_F(ProxyOnCube, AnEdgeMetHeadOnHoldsTheProxyOnOneOfItsFaces) {
@@ -118,7 +118,8 @@ TEST_F(ProxyOnCube, AnEdgeMetHeadOnHoldsTheProxyOnOneOfItsFaces) {
   const Contact c = move(state, bvh, hip, {19.0, 1.0, 19.0}, 40);  // straight through the edge
   ASSERT_TRUE(c.in_contact());
   const glm::dvec3 on_top{19.0, 1.0, 20.0 + eps}, on_side{20.0 + eps, 1.0, 19.0};
-  const double error = std::min(glm::length(state.position - on_top), glm::length(state.position - on_side));
+  const double error =
+      std::min(glm::length(state.position_mm - on_top), glm::length(state.position_mm - on_side));
   EXPECT_LE(error, 1e-9);
   EXPECT_NEAR(c.depth_mm, 1.0 + eps, 1e-5);
 }
@@ -132,7 +133,7 @@ TEST_F(ProxyOnCube, AVertexMetHeadOnHoldsTheProxyOnOneOfItsFaces) {
   for (int axis = 0; axis < 3; ++axis) {
     glm::dvec3 want(19.0);
     want[axis] = 20.0 + eps;
-    error = std::min(error, glm::length(state.position - want));
+    error = std::min(error, glm::length(state.position_mm - want));
   }
   EXPECT_LE(error, 1e-9);
 }
@@ -144,7 +145,7 @@ TEST_F(ProxyOnCube, ForceOnAFaceIsStiffnessTimesDepthAlongTheNormal) {
     const Contact c = move(state, bvh, hip, {3.0, -4.0, 20.0 - depth}, 20);
     ASSERT_TRUE(c.in_contact());
     const ForceResult f = spring_damper(c, glm::vec3(0.0f), material, 100.0f);
-    const double p = 20.0 + eps - double(c.hip.z);
+    const double p = 20.0 + eps - double(c.hip_mm.z);
     // Exact up to the float rounding of the contact's coordinates near 20 mm (2e-6 mm).
     EXPECT_EQ(f.force_n.x, 0.0f);
     EXPECT_EQ(f.force_n.y, 0.0f);
@@ -156,7 +157,7 @@ TEST_F(ProxyOnCube, ForceOnAFaceIsStiffnessTimesDepthAlongTheNormal) {
 // A cube-shaped cavity (walls at +/-10) in a 60 mm block: concave creases and corners.
 class ProxyInCavity : public ::testing::Test {
  protected:
-  Scene scene = scene_of("hollow box", test::make_hollow_box(60.0f, 20.0f));
+  Scene scene = scene_of("hollow box", testing::make_hollow_box(60.0f, 20.0f));
   Bvh bvh = Bvh::build(scene);
   ProxyState state;
   glm::dvec3 hip{0.0, 0.0, 0.0};
@@ -168,32 +169,32 @@ TEST_F(ProxyInCavity, ACornerHoldsTheProxyAtTheCorner) {
   const Contact c = move(state, bvh, hip, {14.0, 13.0, 12.0}, 100);
   ASSERT_TRUE(c.in_contact());
   const glm::dvec3 corner(10.0 - eps);
-  expect_near(state.position, corner, 1e-9, "proxy");
+  expect_near(state.position_mm, corner, 1e-9, "proxy");
   EXPECT_EQ(state.constraint_count, 3);
-  expect_near(glm::dvec3(c.normal), glm::normalize(corner - glm::dvec3(c.hip)), 1e-6, "normal");
-  EXPECT_NEAR(c.depth_mm, glm::length(corner - glm::dvec3(c.hip)), 1e-5);
+  expect_near(glm::dvec3(c.normal), glm::normalize(corner - glm::dvec3(c.hip_mm)), 1e-6, "normal");
+  EXPECT_NEAR(c.depth_mm, glm::length(corner - glm::dvec3(c.hip_mm)), 1e-5);
 }
 
 TEST_F(ProxyInCavity, ACreaseHoldsTheProxyOnTheCreaseLine) {
   const Contact c = move(state, bvh, hip, {14.0, 13.0, 2.0}, 100);
   ASSERT_TRUE(c.in_contact());
-  expect_near(state.position, {10.0 - eps, 10.0 - eps, 2.0}, 1e-9, "proxy");
+  expect_near(state.position_mm, {10.0 - eps, 10.0 - eps, 2.0}, 1e-9, "proxy");
   EXPECT_EQ(state.constraint_count, 2);
   // Along the crease the proxy slides freely.
   move(state, bvh, hip, {14.0, 13.0, -7.0}, 100);
-  expect_near(state.position, {10.0 - eps, 10.0 - eps, -7.0}, 1e-9, "proxy");
+  expect_near(state.position_mm, {10.0 - eps, 10.0 - eps, -7.0}, 1e-9, "proxy");
   // Back into the room: released.
   const Contact back = move(state, bvh, hip, {0.0, 0.0, 0.0}, 100);
   EXPECT_FALSE(back.in_contact());
-  expect_near(state.position, glm::dvec3(0.0), 1e-12, "proxy");
+  expect_near(state.position_mm, glm::dvec3(0.0), 1e-12, "proxy");
 }
 
 // A pit: a square cup whose four faces meet at an apex 5 mm below the rim, on a block. From above,
 // the apex is a concave vertex of four faces.
 Mesh make_pit() {
   Mesh m;
-  m.positions = {{-10, -10, 0},   {10, -10, 0},   {10, 10, 0},   {-10, 10, 0},  {0, 0, -5},
-                 {-10, -10, -20}, {10, -10, -20}, {10, 10, -20}, {-10, 10, -20}};
+  m.positions_mm = {{-10, -10, 0},   {10, -10, 0},   {10, 10, 0},   {-10, 10, 0},  {0, 0, -5},
+                    {-10, -10, -20}, {10, -10, -20}, {10, 10, -20}, {-10, 10, -20}};
   m.indices = {0, 1, 4, 1, 2, 4, 2, 3, 4, 3, 0, 4,                                       // the cup
                5, 7, 6, 5, 8, 7,                                                         // bottom
                0, 5, 6, 0, 6, 1, 1, 6, 7, 1, 7, 2, 2, 7, 8, 2, 8, 3, 3, 8, 5, 3, 5, 0};  // sides
@@ -209,8 +210,8 @@ TEST(ProxyInPit, TheApexHoldsTheProxy) {
   state.reset(glm::vec3(hip));
   const Contact c = move(state, bvh, hip, {0.3, -0.2, -8.0}, 200);
   ASSERT_TRUE(c.in_contact());
-  EXPECT_LE(glm::length(state.position - glm::dvec3(0.0, 0.0, -5.0)), 2.0 * eps);
-  EXPECT_GT(state.position.z, -5.0);
+  EXPECT_LE(glm::length(state.position_mm - glm::dvec3(0.0, 0.0, -5.0)), 2.0 * eps);
+  EXPECT_GT(state.position_mm.z, -5.0);
 }
 
 TEST(ProxyOnThinPlate, AFastMoveThroughItIsStoppedOnTop) {
@@ -221,19 +222,19 @@ TEST(ProxyOnThinPlate, AFastMoveThroughItIsStoppedOnTop) {
   state.reset(glm::vec3(hip));
   Contact c = move(state, bvh, hip, {1.0, 2.0, -10.0}, 1);  // 20 mm in one tick
   ASSERT_TRUE(c.in_contact());
-  expect_near(state.position, {1.0, 2.0, 0.05 + eps}, 1e-6, "proxy");
+  expect_near(state.position_mm, {1.0, 2.0, 0.05 + eps}, 1e-6, "proxy");
   EXPECT_GT(c.normal.z, 0.999f);
   // Below the plate the tip drags the proxy along the top.
   for (int i = 1; i <= 100; ++i) {
     c = move(state, bvh, hip, hip + glm::dvec3(0.2, -0.3, 0.0), 1);
     ASSERT_TRUE(c.in_contact());
-    const glm::dvec3 h(c.hip);
-    expect_near(state.position, {h.x, h.y, double(0.05f) + eps}, 1e-6, "proxy");
+    const glm::dvec3 h(c.hip_mm);
+    expect_near(state.position_mm, {h.x, h.y, double(0.05f) + eps}, 1e-6, "proxy");
   }
   // Back up through it in one tick: released, at the tip.
   c = move(state, bvh, hip, hip + glm::dvec3(0.0, 0.0, 20.0), 1);
   EXPECT_FALSE(c.in_contact());
-  expect_near(state.position, glm::dvec3(c.hip), 1e-12, "proxy");
+  expect_near(state.position_mm, glm::dvec3(c.hip_mm), 1e-12, "proxy");
 }
 
 TEST(ProxyAmongObjects, ReportsTheSceneIndexOfTheObjectTouched) {
@@ -259,7 +260,7 @@ TEST(ProxyAmongObjects, ReportsTheSceneIndexOfTheObjectTouched) {
   c = move(state, bvh, hip, {20.0, 1.0, 3.0}, 20);
   ASSERT_TRUE(c.in_contact());
   EXPECT_EQ(c.object, 2);
-  expect_near(state.position, {20.0, 1.0, 5.0 + eps}, 1e-6, "proxy");
+  expect_near(state.position_mm, {20.0, 1.0, 5.0 + eps}, 1e-6, "proxy");
 }
 
 TEST(ProxyStartingInside, FeelsNothingUntilItHasLeftThenTheForceRampsFromZero) {
@@ -302,11 +303,11 @@ TEST(ProxyWithBadInput, ANonFiniteHipLeavesTheProxyAndGivesNoContact) {
   glm::dvec3 hip{0.0, 0.0, 30.0};
   state.reset(glm::vec3(hip));
   move(state, bvh, hip, {0.0, 0.0, 18.0}, 20);
-  const glm::dvec3 before = state.position;
+  const glm::dvec3 before = state.position_mm;
   for (float bad : {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity()}) {
     const Contact c = proxy_step(state, bvh, glm::vec3(1.0f, bad, 2.0f));
     EXPECT_FALSE(c.in_contact());
-    EXPECT_EQ(state.position, before);
+    EXPECT_EQ(state.position_mm, before);
     EXPECT_TRUE(spring_damper(c, glm::vec3(0.0f), Material{}, 10.0f).invalid_input);
   }
   // And it carries on from where it was.
@@ -318,7 +319,7 @@ TEST(ProxyOnEmptyScene, FollowsTheHip) {
   ProxyState state;
   const Contact c = proxy_step(state, bvh, {1.0f, 2.0f, 3.0f});
   EXPECT_FALSE(c.in_contact());
-  EXPECT_EQ(state.position, glm::dvec3(1.0, 2.0, 3.0));
+  EXPECT_EQ(state.position_mm, glm::dvec3(1.0, 2.0, 3.0));
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <glm/vec3.hpp>
+#include <span>
 #include <vector>
 
 #include "palpate/core/mesh.hpp"
@@ -24,7 +25,7 @@ namespace palpate {
 struct BvhHit {
   int object = -1;              // scene object index; -1 when nothing was hit
   int triangle = -1;            // triangle index in that object's mesh
-  glm::vec3 point{0.0f};        // the hit (or closest) point, world mm
+  glm::vec3 point_mm{0.0f};     // the hit (or closest) point, world mm
   float t = 0.0f;               // first_hit: segment parameter in [0, 1]; closest_point: 0
   float distance_mm = 0.0f;     // closest_point: distance from the query point; first_hit: 0
   glm::vec3 normal{0.0f};       // the triangle's unit face normal, outward (counter-clockwise winding)
@@ -38,6 +39,14 @@ enum class Faces {
   front,  // only from outside to inside (against the outward normal): the haptic proxy's view
   both,   // either side
 };
+
+// Which scene objects a query sees, or a build includes: object i when i < size() and mask[i] != 0.
+// An empty mask means every object. Queries check it only for a triangle that would be their answer,
+// so a mask costs next to nothing.
+using ObjectMask = std::span<const std::uint8_t>;
+inline bool sees(ObjectMask mask, int object) noexcept {
+  return mask.empty() || (object >= 0 && std::size_t(object) < mask.size() && mask[std::size_t(object)] != 0);
+}
 
 // The point of triangle (a, b, c) closest to p (Ericson, Real-Time Collision Detection, 5.1.5).
 glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
@@ -64,8 +73,14 @@ class Bvh {
   // World-space triangles of the scene's touchable objects (object transform applied). Throws
   // palpate::Error naming the object when a mesh has out-of-range indices or non-finite positions.
   static Bvh build(const Scene& scene);
+  // The same over the objects `included` names, touchable or not (an empty mask: all of them): a tree
+  // over one object for aiming at it, or over every object so that a HapticLoop can make an object
+  // touchable while it runs (its queries then see only the touchable ones through a mask).
+  static Bvh build(const Scene& scene, ObjectMask included);
 
   std::size_t triangle_count() const noexcept { return triangles_.size(); }
+  // Whether the tree holds triangles of scene object `object`.
+  bool contains(int object) const noexcept;
   std::size_t node_count() const noexcept { return nodes_.size(); }
   // Bytes held by the nodes, the triangles and the object table.
   std::size_t memory_bytes() const noexcept;
@@ -76,17 +91,32 @@ class Bvh {
   // with a watertight edge test, so a segment through a shared edge or vertex of a closed mesh
   // always hits one of its triangles. A front-face crossing counts when `from` is in front of the
   // triangle's plane or at most `start_tolerance_mm` behind it (t is then 0), and `to` is on or
-  // behind the plane.
+  // behind the plane. Only the objects `seen` names count.
   BvhHit first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces = Faces::front,
-                   double start_tolerance_mm = 0.0) const noexcept;
+                   double start_tolerance_mm = 0.0, ObjectMask seen = {}) const noexcept;
 
-  // The closest point on any triangle to `point` no farther than `max_distance_mm`, or no hit.
-  BvhHit closest_point(const glm::dvec3& point, double max_distance_mm) const noexcept;
+  // The closest point on any triangle of the `seen` objects to `point` no farther than
+  // `max_distance_mm`, or no hit.
+  BvhHit closest_point(const glm::dvec3& point, double max_distance_mm, ObjectMask seen = {}) const noexcept;
+
+  // Among the triangles of the `seen` objects that pass within `radius_mm` of `around`, the point
+  // nearest `point`, or no hit: what a proxy resting at `around` could reach by sliding onto one of the
+  // faces it touches.
+  BvhHit closest_point_near(const glm::dvec3& point, const glm::dvec3& around, double radius_mm,
+                            ObjectMask seen = {}) const noexcept;
 
   // A triangle by its BVH index (BvhHit::primitive), for callers that need it in double precision.
   const Triangle& triangle(std::uint32_t primitive) const noexcept { return triangles_[primitive]; }
-  // The scene object and the triangle within its mesh of a BVH triangle.
-  void locate(std::uint32_t primitive, int& object, int& triangle) const noexcept;
+  // Where a BVH triangle comes from in the scene.
+  struct Location {
+    int object = -1;    // scene object index
+    int triangle = -1;  // triangle index in that object's mesh
+  };
+  Location locate(std::uint32_t primitive) const noexcept;
+  // Whether `seen` sees the object of a BVH triangle.
+  bool primitive_seen(ObjectMask seen, std::uint32_t primitive) const noexcept {
+    return seen.empty() || sees(seen, locate(primitive).object);
+  }
 
   const std::vector<Node>& nodes() const noexcept { return nodes_; }
 

@@ -18,9 +18,9 @@ namespace palpate {
 
 // One contact as the renderer sees it: where, how deep, and the sigma of the object it deforms.
 struct Dent {
-  glm::vec3 center{0.0f};  // contact point c (the SCP), world mm
-  float depth_mm = 0.0f;   // p
-  float sigma_mm = 1.0f;   // spread of the touched object's material
+  glm::vec3 center_mm{0.0f};  // contact point c (the SCP), world mm
+  float depth_mm = 0.0f;      // p
+  float sigma_mm = 1.0f;      // spread of the touched object's material
 };
 
 inline constexpr int max_dents = 8;
@@ -49,7 +49,7 @@ void deform_mesh(const Mesh& mesh, const glm::mat4& transform, std::span<const D
 
 // The dent a contact makes on an object of spread `sigma_mm`.
 inline Dent dent_from_contact(const Contact& contact, float sigma_mm) noexcept {
-  return Dent{contact.point, contact.depth_mm, sigma_mm};
+  return Dent{contact.point_mm, contact.depth_mm, sigma_mm};
 }
 
 }  // namespace palpate

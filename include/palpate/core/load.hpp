@@ -29,7 +29,7 @@
 
 namespace palpate {
 
-struct LoadOptions {
+struct LoadParams {
   // Coin rejects a VRML or Inventor file that has a field its node type does not define, as some
   // exporters write (e.g. `mirror` in Material). When true, such a file is read again with those
   // fields removed (by name, in nodes of the type Coin named) and each dropped field is reported
@@ -45,12 +45,12 @@ struct LoadOptions {
 // Text is not geometry here: Text / AsciiText / Text2 / Text3 are skipped (with a warning), as are
 // line and point sets; Collision proxies are not drawn.
 Scene load_model(const std::filesystem::path& file);
-Scene load_model(const std::filesystem::path& file, const LoadOptions& options);
+Scene load_model(const std::filesystem::path& file, const LoadParams& options);
 
 // All shapes of the file merged into one mesh (vertex colours kept where any shape has them: the
 // shapes without get their material colour).
 Mesh load_mesh(const std::filesystem::path& file);
-Mesh load_mesh(const std::filesystem::path& file, const LoadOptions& options);
+Mesh load_mesh(const std::filesystem::path& file, const LoadParams& options);
 
 // Writes by extension: .wrl (VRML97, through Coin) or .ply (binary little-endian PLY with normals
 // and 8-bit colours). Throws palpate::Error for another extension, an invalid mesh or a write error.

@@ -9,20 +9,20 @@
 namespace palpate {
 
 struct Mesh {
-  std::vector<glm::vec3> positions;    // mm
+  std::vector<glm::vec3> positions_mm;
   std::vector<glm::vec3> normals;      // unit, one per position (outward)
   std::vector<glm::vec3> colors;       // linear RGB in [0,1], one per position, or empty
   std::vector<std::uint32_t> indices;  // three per triangle, counter-clockwise seen from outside
 
-  std::size_t vertex_count() const noexcept { return positions.size(); }
+  std::size_t vertex_count() const noexcept { return positions_mm.size(); }
   std::size_t triangle_count() const noexcept { return indices.size() / 3; }
 };
 
 struct Bounds {
-  glm::vec3 min{0.0f};
-  glm::vec3 max{0.0f};
-  glm::vec3 size() const noexcept { return max - min; }
-  glm::vec3 center() const noexcept { return (min + max) * 0.5f; }
+  glm::vec3 min_mm{0.0f};
+  glm::vec3 max_mm{0.0f};
+  glm::vec3 size_mm() const noexcept { return max_mm - min_mm; }
+  glm::vec3 center_mm() const noexcept { return (min_mm + max_mm) * 0.5f; }
 };
 
 // Axis-aligned bounds of the positions; all zero for an empty mesh.

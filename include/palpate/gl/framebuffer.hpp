@@ -15,7 +15,7 @@ enum class ColorFormat {
   rgba32f,  // debug output at full precision
 };
 
-struct FramebufferOptions {
+struct FramebufferParams {
   int width = 1280;
   int height = 1024;
   ColorFormat color = ColorFormat::rgba8;
@@ -24,7 +24,7 @@ struct FramebufferOptions {
 
 class Framebuffer {
  public:
-  explicit Framebuffer(FramebufferOptions options);
+  explicit Framebuffer(FramebufferParams options);
   ~Framebuffer();
   Framebuffer(const Framebuffer&) = delete;
   Framebuffer& operator=(const Framebuffer&) = delete;
@@ -34,7 +34,7 @@ class Framebuffer {
   GLuint id() const noexcept { return framebuffer_; }
   int width() const noexcept { return options_.width; }
   int height() const noexcept { return options_.height; }
-  const FramebufferOptions& options() const noexcept { return options_; }
+  const FramebufferParams& options() const noexcept { return options_; }
 
   // The colour attachment, bottom row first, 4 channels a pixel (resolving first if multisampled).
   // Allocates. Leaves GL_READ_FRAMEBUFFER bound to this framebuffer's readable copy.
@@ -44,7 +44,7 @@ class Framebuffer {
  private:
   GLuint readable() const noexcept;
 
-  FramebufferOptions options_;
+  FramebufferParams options_;
   GLuint framebuffer_ = 0, color_ = 0, depth_ = 0;
   GLuint resolve_framebuffer_ = 0, resolve_color_ = 0;  // only when multisampled
 };

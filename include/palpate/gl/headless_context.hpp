@@ -9,7 +9,7 @@
 
 namespace palpate::gl {
 
-struct HeadlessContextOptions {
+struct HeadlessContextParams {
   int major_version = 4;  // OpenGL core profile version asked for
   int minor_version = 5;
 };
@@ -17,7 +17,7 @@ struct HeadlessContextOptions {
 class HeadlessContext {
  public:
   // Creates the context and makes it current on the calling thread.
-  explicit HeadlessContext(HeadlessContextOptions options = {});
+  explicit HeadlessContext(HeadlessContextParams options = {});
   ~HeadlessContext();
   HeadlessContext(const HeadlessContext&) = delete;
   HeadlessContext& operator=(const HeadlessContext&) = delete;

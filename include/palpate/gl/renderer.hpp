@@ -47,7 +47,7 @@ enum class Shading {
 struct Lighting {
   glm::vec3 direction{-0.6f, 0.55f, 0.55f};  // toward the directional light: upper left, so dents shade
   glm::vec3 color{0.62f, 0.6f, 0.57f};
-  glm::vec3 spot_position{0.0f, 80.0f, 0.0f};     // mm: a head lamp above the eye,
+  glm::vec3 spot_position_mm{0.0f, 80.0f, 0.0f};  // mm: a head lamp above the eye,
   glm::vec3 spot_direction{0.0f, -0.3f, -0.95f};  // along the beam: toward the middle of the view at 250 mm
   float spot_inner_deg = 10.0f;                   // full intensity inside, fading to zero at the outer angle
   float spot_outer_deg = 28.0f;
@@ -56,7 +56,7 @@ struct Lighting {
   float specular = 0.3f;
 };
 
-struct DrawOptions {
+struct DrawParams {
   Deformation deformation = Deformation::gpu;
   Shading shading = Shading::lit;
   // Draw the triangles that no dent reaches (all beyond 4 sigma) with the plain shader: the image is the
@@ -107,12 +107,20 @@ class Renderer {
   void upload(const Scene& scene);
   std::size_t object_count() const noexcept;
 
-  // Draws the uploaded scene with each in-contact Contact denting its object.
+  // From the next draw on, object `object` is drawn with `material`'s sigma, colour and visibility;
+  // nothing is uploaded again (its stiffness, damping and touchability are the haptic side's: see
+  // HapticLoop::set_material). Throws palpate::Error for an index out of range or a sigma that is not
+  // positive and finite.
+  void set_material(std::size_t object, const Material& material);
+
+  // Draws the uploaded scene with each in-contact Contact denting its object. Allocation: the GPU path
+  // reuses its per-object scratch lists, which grow only in the first frames; the CPU-naive path makes
+  // its buffers on its first frame and reuses them.
   DrawResult draw(const glm::mat4& view, const glm::mat4& projection, std::span<const Contact> contacts,
-                  const DrawOptions& options = {});
+                  const DrawParams& options = {});
   // Draws the uploaded scene with the given dents.
   DrawResult draw(const glm::mat4& view, const glm::mat4& projection, std::span<const ObjectDent> dents,
-                  const DrawOptions& options = {});
+                  const DrawParams& options = {});
 
  private:
   struct State;

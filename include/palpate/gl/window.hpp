@@ -7,7 +7,7 @@
 
 namespace palpate::gl {
 
-struct WindowOptions {
+struct WindowParams {
   int width = 1280;
   int height = 1024;
   std::string title = "palpate";
@@ -18,7 +18,7 @@ struct WindowOptions {
 class Window {
  public:
   // Opens the window and makes its context current on the calling thread.
-  explicit Window(const WindowOptions& options);
+  explicit Window(const WindowParams& options);
   ~Window();
   Window(const Window&) = delete;
   Window& operator=(const Window&) = delete;

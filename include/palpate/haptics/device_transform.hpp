@@ -12,12 +12,12 @@
 namespace palpate {
 
 struct DeviceTransform {
-  float scale = 1.0f;           // scene mm per device mm, > 0
-  glm::mat3 rotation{1.0f};     // device axes to scene axes, orthonormal with det +1
-  glm::vec3 translation{0.0f};  // scene position of the device origin, mm
+  float scale = 1.0f;              // scene mm per device mm, > 0
+  glm::mat3 rotation{1.0f};        // device axes to scene axes, orthonormal with det +1
+  glm::vec3 translation_mm{0.0f};  // scene position of the device origin, mm
 
   glm::vec3 point_to_scene(glm::vec3 device_mm) const noexcept {
-    return rotation * (scale * device_mm) + translation;
+    return rotation * (scale * device_mm) + translation_mm;
   }
   glm::vec3 velocity_to_scene(glm::vec3 device_mm_per_s) const noexcept {
     return rotation * (scale * device_mm_per_s);
@@ -27,7 +27,7 @@ struct DeviceTransform {
   }
   // The inverse map, for aiming a scripted path at a scene point.
   glm::vec3 point_to_device(glm::vec3 scene_mm) const noexcept {
-    return glm::transpose(rotation) * (scene_mm - translation) / scale;
+    return glm::transpose(rotation) * (scene_mm - translation_mm) / scale;
   }
   glm::vec3 direction_to_device(glm::vec3 scene_direction) const noexcept {
     return glm::transpose(rotation) * scene_direction;

@@ -1,6 +1,7 @@
 #pragma once
 // The haptic loop: a thread of its own that runs a HapticPipeline tick at a fixed rate on absolute
-// deadlines and publishes each tick's Contact through a Latest<Contact> that any thread may read.
+// deadlines and publishes each tick's whole result (contact, commanded force, flags) through a
+// Latest<TickResult> that any thread may read without ever blocking the loop.
 //
 // Schedule: period k starts at a deadline on the grid origin + k / rate. The thread sleeps until the
 // deadline (clock_nanosleep TIMER_ABSTIME, then a short spin), runs the tick, and records its start,
@@ -8,16 +9,24 @@
 // tick then starts at once, on the latest grid point already passed, so a late tick never causes a
 // burst of catch-up ticks (lost periods show in the achieved rate).
 //
-// SCHED_FIFO is requested when the thread starts; where it is not permitted, start() writes one line
-// to stderr and the loop runs at normal priority. Inside the loop nothing allocates, locks, logs or
-// does I/O; tests/concurrency/haptic_loop_test.cpp counts operator new calls on the loop thread.
+// Live changes: set_material() and set_device_transform() reach the haptic thread through
+// latest-value channels and take effect at the next tick; the loop keeps running, nothing is
+// allocated on its thread, and the force follows the new material from that tick on.
+//
+// SCHED_FIFO is requested when the thread starts; where it is not permitted, start() says so once
+// through HapticLoopParams::on_log and the loop runs at normal priority. Inside the loop nothing
+// allocates, locks, logs or does I/O; tests/concurrency/haptic_loop_test.cpp counts operator new calls
+// on the loop thread.
 #include <atomic>
 #include <cstdint>
+#include <functional>
 #include <memory>
+#include <mutex>
+#include <string>
 #include <thread>
 
 #include "palpate/core/bvh.hpp"
-#include "palpate/core/contact.hpp"
+#include "palpate/core/material.hpp"
 #include "palpate/core/scene.hpp"
 #include "palpate/haptics/device.hpp"
 #include "palpate/haptics/device_transform.hpp"
@@ -37,13 +46,17 @@ struct HapticLoopParams {
   int fifo_priority = 80;                 // 1..99 when SCHED_FIFO is granted
   double spin_us = 100.0;                 // spin this long before each deadline (at most half a period)
   std::size_t statistics_window = 32768;  // ticks behind the percentiles
+  // Receives what start() has to say (SCHED_FIFO refused), on the thread that calls start(). Empty:
+  // discarded, never printed.
+  std::function<void(const std::string&)> on_log;
 };
 
 class HapticLoop {
  public:
-  // Borrows device, scene and bvh (they must outlive the loop). `clock`: nullptr for the monotonic
-  // clock; a fake clock makes the schedule and statistics deterministic (with run_ticks).
-  // Throws palpate::Error for a rate out of range or an invalid transform.
+  // Borrows the device and the BVH (they must outlive the loop) and copies the scene's materials.
+  // `clock`: nullptr for the monotonic clock; a fake clock makes the schedule and statistics
+  // deterministic (with run_ticks). Allocates; throws palpate::Error for a rate out of range or an
+  // invalid transform.
   HapticLoop(Device& device, const Scene& scene, const Bvh& bvh, const HapticLoopParams& params = {},
              LoopClock* clock = nullptr);
   ~HapticLoop();
@@ -64,10 +77,19 @@ class HapticLoop {
   // Throws palpate::Error while the thread runs.
   void run_ticks(std::uint64_t count);
 
-  // Any thread, never blocks the loop.
-  Contact latest_contact() const noexcept { return contacts_.load(); }
-  const Latest<Contact>& contacts() const noexcept { return contacts_; }
+  // The latest tick's result. Any thread, never blocks the loop, no allocation.
+  TickResult latest() const noexcept { return results_.load(); }
+  const Latest<TickResult>& results() const noexcept { return results_; }
+  // Any thread, never blocks the loop; allocates a copy of the statistics window.
   LoopStatistics statistics() const { return stats_.snapshot(); }
+
+  // From the next tick on, object `object` feels like `material` (stiffness, damping, touchability),
+  // with no restart. Any thread (callers are serialised among themselves; the haptic thread never
+  // waits for them). Throws palpate::Error for an object out of range, or for making touchable an
+  // object the BVH does not hold (build it with Bvh::build(scene, {}) to allow that).
+  void set_material(std::size_t object, const Material& material);
+  // From the next tick on. Any thread. Throws palpate::Error for an invalid transform.
+  void set_device_transform(const DeviceTransform& device_to_scene);
   double rate_hz() const noexcept { return rate_hz_; }
   // Seconds on the loop's clock since the current run started, the scale of Contact::time_s: a reader
   // learns how old a contact is as run_time_s() - contact.time_s. Any thread with the monotonic clock.
@@ -75,9 +97,11 @@ class HapticLoop {
 
  private:
   void begin_run() noexcept;
+  void apply_live_changes() noexcept;
   void run_period() noexcept;
   void thread_main() noexcept;
 
+  const Bvh& bvh_;
   HapticPipeline pipeline_;
   double rate_hz_;
   std::int64_t period_ns_;
@@ -85,7 +109,16 @@ class HapticLoop {
   std::unique_ptr<MonotonicClock> own_clock_;
   LoopClock& clock_;
   LoopStatsRecorder stats_;
-  Latest<Contact> contacts_;
+  Latest<TickResult> results_;
+
+  // Live changes: written by set_material / set_device_transform under setters_, read by the loop.
+  std::mutex setters_;
+  std::size_t object_count_;
+  std::unique_ptr<Latest<Material>[]> materials_;       // one per scene object
+  std::atomic<std::uint64_t> materials_generation_{0};  // bumped after each set_material
+  std::uint64_t materials_applied_ = 0;                 // loop thread: the generation it applied
+  Latest<DeviceTransform> device_to_scene_;
+  std::uint64_t device_to_scene_applied_ = 0;  // loop thread: the version it applied
 
   std::atomic<std::int64_t> origin_ns_{0};  // device time 0 of this run
   std::int64_t period_start_ns_ = 0;        // grid point the next tick waits for

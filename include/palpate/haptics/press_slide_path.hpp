@@ -13,7 +13,7 @@
 
 namespace palpate {
 
-struct PressSlide {
+struct PressSlideParams {
   glm::vec3 surface_point_mm{0.0f};             // where the approach lands, device frame
   glm::vec3 normal{0.0f, 0.0f, 1.0f};           // outward surface normal there (normalised on use)
   glm::vec3 slide_direction{1.0f, 0.0f, 0.0f};  // projected onto the tangent plane; not along the normal
@@ -33,7 +33,7 @@ class PressSlidePath {
  public:
   // Throws palpate::Error naming the field for non-finite values, non-positive speeds or lengths,
   // a zero normal, a slide direction along the normal, or a start height not above the press depth.
-  explicit PressSlidePath(const PressSlide& spec);
+  explicit PressSlidePath(const PressSlideParams& spec);
 
   // Position and velocity at `time_s` (clamped to [0, duration]); buttons are 0.
   DeviceState sample(double time_s) const noexcept;
@@ -50,10 +50,10 @@ class PressSlidePath {
   // Surface point and outward normal at slide arc length `s_mm`.
   glm::vec3 surface_at(float s_mm) const noexcept;
   glm::vec3 normal_at(float s_mm) const noexcept;
-  const PressSlide& spec() const noexcept { return spec_; }
+  const PressSlideParams& spec() const noexcept { return spec_; }
 
  private:
-  PressSlide spec_;
+  PressSlideParams spec_;
   glm::vec3 normal_{0.0f}, tangent_{0.0f};
   double approach_end_s_ = 0, slide_end_s_ = 0, retract_end_s_ = 0, duration_s_ = 0;
 };
@@ -61,9 +61,11 @@ class PressSlidePath {
 // `spec` aimed at vertex `vertex` of `object`, in world (scene) coordinates: the surface point is the
 // vertex, the normal the mean of the vertex normals within `smoothing_radius_mm` (the surface's
 // direction at the scale of a slide, not one bump's), the curvature that of the sphere through the
-// vertex about the object's bounds centre. The other fields are kept. Allocates when the mesh has
+// vertex about the object's bounds centre where that normal points away from the centre (within 45
+// degrees) and the sphere is more than twice the deepest press in radius, else flat. The other fields
+// are kept. Allocates when the mesh has
 // no normals; throws palpate::Error for a vertex out of range.
-PressSlide aim_press_slide(const SceneObject& object, std::size_t vertex, glm::vec3 slide_direction,
-                           PressSlide spec = {}, float smoothing_radius_mm = 8.0f);
+PressSlideParams aim_press_slide(const SceneObject& object, std::size_t vertex, glm::vec3 slide_direction,
+                                 PressSlideParams spec = {}, float smoothing_radius_mm = 8.0f);
 
 }  // namespace palpate

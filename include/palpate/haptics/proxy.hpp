@@ -49,14 +49,14 @@ struct ProxyParams {
 
 // A plane the proxy rests on: n . x >= offset, the offset already raised by the surface epsilon.
 struct ProxyConstraint {
-  glm::dvec3 normal{0.0};       // unit, outward
-  double offset = 0.0;          // mm
-  double multiplier = 0.0;      // how hard the HIP pushes into it, mm (the Lagrange multiplier)
+  glm::dvec3 normal{0.0};  // unit, outward
+  double offset_mm = 0.0;
+  double multiplier_mm = 0.0;   // how hard the HIP pushes into it (the Lagrange multiplier)
   std::uint32_t primitive = 0;  // the triangle's index in the BVH
 };
 
 struct ProxyState {
-  glm::dvec3 position{0.0};                      // the proxy (SCP), world mm
+  glm::dvec3 position_mm{0.0};                   // the proxy (SCP), world mm
   std::array<ProxyConstraint, 3> constraints{};  // the planes active at the end of the last step
   int constraint_count = 0;
   bool placed = false;      // false until reset() or the first step, which puts the proxy at the HIP
@@ -67,14 +67,17 @@ struct ProxyState {
   void reset(glm::vec3 position) noexcept;
 };
 
-// One god-object step toward `hip` (world mm). Returns the contact: object and triangle of the plane
+// One god-object step toward `hip_mm` (world). Returns the contact: object and triangle of the plane
 // the HIP pushes into hardest, SCP = the proxy, the HIP, the outward normal, depth = |HIP - SCP|; no
 // contact (object -1, zero depth) when the proxy reached the HIP. The contact normal is the direction
 // of the constraint force, (SCP - HIP) / |SCP - HIP|: on a face it is that face's normal, on a crease,
 // edge or corner it is the combination of the active faces' normals that pushes the proxy back.
-// A non-finite `hip` leaves the state unchanged and returns no contact, with the HIP copied as given
-// (spring_damper then flags it). tick and time_s are left 0 for the caller to fill.
+// A non-finite `hip_mm` leaves the state unchanged and returns no contact, with the HIP copied as given
+// (spring_damper then flags it). tick and time_s are left 0 for the caller to fill. Only the objects
+// `touchable` names stop the proxy (an empty mask: every object of the BVH); a plane of an object that
+// stops being touchable is let go at the next step.
 // noexcept, no allocation, no locks: safe in the haptic tick.
-Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip, const ProxyParams& params = {}) noexcept;
+Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const ProxyParams& params = {},
+                   ObjectMask touchable = {}) noexcept;
 
 }  // namespace palpate

@@ -5,7 +5,7 @@
 
 #include <vector>
 
-namespace palpate::cli {
+namespace palpate::testing {
 
 class CpuBurners {
  public:
@@ -21,4 +21,4 @@ class CpuBurners {
   std::vector<pid_t> children_;
 };
 
-}  // namespace palpate::cli
+}  // namespace palpate::testing

@@ -1,4 +1,4 @@
-#include "cpu_burner.hpp"
+#include "palpate/testing/cpu_burners.hpp"
 
 #include <signal.h>
 #include <sys/prctl.h>
@@ -11,7 +11,7 @@
 
 #include "palpate/core/error.hpp"
 
-namespace palpate::cli {
+namespace palpate::testing {
 
 CpuBurners::CpuBurners(int count) {
   for (int i = 0; i < count; ++i) {
@@ -40,4 +40,4 @@ void CpuBurners::kill_all() noexcept {
   children_.clear();
 }
 
-}  // namespace palpate::cli
+}  // namespace palpate::testing

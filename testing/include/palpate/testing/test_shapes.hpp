@@ -1,0 +1,24 @@
+#pragma once
+// Test scenes for the haptic core: shapes with the concave creases, corners and slots that a god-object
+// must handle.
+#include <cstddef>
+#include <string>
+
+#include "palpate/core/mesh.hpp"
+#include "palpate/core/scene.hpp"
+
+namespace palpate::testing {
+
+// A scene of one touchable object.
+Scene scene_of(const std::string& name, Mesh mesh);
+
+// A closed cube of `outer` mm with a cubic cavity of `inner` mm at its centre: from inside the cavity
+// every wall meets the next in a concave crease and every corner is a concave three-plane corner.
+Mesh make_hollow_box(float outer_mm, float inner_mm);
+
+// A closed comb: a base block with `teeth` teeth, extruded `depth` mm along z. The gaps between teeth
+// are narrow concave slots (like sulci) with concave creases at their bottoms and convex edges on top.
+Mesh make_comb(int teeth, float tooth_width_mm, float gap_mm, float tooth_height_mm, float base_height_mm,
+               float depth_mm);
+
+}  // namespace palpate::testing

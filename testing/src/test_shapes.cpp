@@ -1,0 +1,79 @@
+#include "palpate/testing/test_shapes.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <map>
+#include <tuple>
+
+#include "palpate/core/shapes.hpp"
+
+namespace palpate::testing {
+
+Scene scene_of(const std::string& name, Mesh mesh) {
+  Scene scene;
+  scene.objects.push_back({name, std::move(mesh), glm::mat4(1.0f), {}, {}});
+  return scene;
+}
+
+Mesh make_hollow_box(float outer_mm, float inner_mm) {
+  Mesh mesh = make_box(glm::vec3(outer_mm));
+  Mesh cavity = make_box(glm::vec3(inner_mm));
+  for (std::size_t t = 0; t < cavity.indices.size(); t += 3)
+    std::swap(cavity.indices[t + 1], cavity.indices[t + 2]);
+  for (glm::vec3& n : cavity.normals) n = -n;
+  append_mesh(mesh, cavity);
+  return mesh;
+}
+
+Mesh make_comb(int teeth, float tooth_width_mm, float gap_mm, float tooth_height_mm, float base_height_mm,
+               float depth_mm) {
+  const float pitch = tooth_width_mm + gap_mm;
+  const float width = float(teeth) * tooth_width_mm + float(teeth - 1) * gap_mm;
+  const float top = base_height_mm + tooth_height_mm;
+  std::vector<float> xs;  // every tooth side
+  for (int k = 0; k < teeth; ++k) xs.insert(xs.end(), {float(k) * pitch, float(k) * pitch + tooth_width_mm});
+  // The outline, counter-clockwise seen from +z, with a vertex wherever a cap triangle has one.
+  std::vector<glm::vec2> outline;
+  for (float x : xs) outline.push_back({x, 0.0f});
+  for (int k = teeth - 1; k >= 0; --k) {
+    const float left = float(k) * pitch, right = left + tooth_width_mm;
+    outline.insert(outline.end(),
+                   {{right, base_height_mm}, {right, top}, {left, top}, {left, base_height_mm}});
+  }
+  // Cap quads: the base cut at every tooth side, then the teeth.
+  std::vector<std::array<glm::vec2, 4>> quads;
+  for (std::size_t i = 0; i + 1 < xs.size(); ++i) {
+    quads.push_back(
+        {{{xs[i], 0.0f}, {xs[i + 1], 0.0f}, {xs[i + 1], base_height_mm}, {xs[i], base_height_mm}}});
+  }
+  for (int k = 0; k < teeth; ++k) {
+    const float left = float(k) * pitch, right = left + tooth_width_mm;
+    quads.push_back({{{left, base_height_mm}, {right, base_height_mm}, {right, top}, {left, top}}});
+  }
+  Mesh mesh;
+  std::map<std::tuple<float, float, float>, std::uint32_t> index;
+  const auto vertex = [&](glm::vec2 p, float z) {
+    const auto key = std::make_tuple(p.x - 0.5f * width, p.y, z - 0.5f * depth_mm);
+    const auto [it, added] = index.emplace(key, std::uint32_t(mesh.positions_mm.size()));
+    if (added) mesh.positions_mm.push_back({std::get<0>(key), std::get<1>(key), std::get<2>(key)});
+    return it->second;
+  };
+  const auto quad = [&](std::uint32_t a, std::uint32_t b, std::uint32_t c, std::uint32_t d) {
+    mesh.indices.insert(mesh.indices.end(), {a, b, c, a, c, d});
+  };
+  for (const auto& q : quads) {
+    quad(vertex(q[0], depth_mm), vertex(q[1], depth_mm), vertex(q[2], depth_mm),
+         vertex(q[3], depth_mm));                                                          // +z cap
+    quad(vertex(q[0], 0.0f), vertex(q[3], 0.0f), vertex(q[2], 0.0f), vertex(q[1], 0.0f));  // -z cap
+  }
+  for (std::size_t i = 0; i < outline.size(); ++i) {
+    const glm::vec2 a = outline[i], b = outline[(i + 1) % outline.size()];
+    quad(vertex(a, 0.0f), vertex(b, 0.0f), vertex(b, depth_mm), vertex(a, depth_mm));
+  }
+  compute_vertex_normals(mesh);
+  return mesh;
+}
+
+}  // namespace palpate::testing
