@@ -324,11 +324,7 @@ void write_json(const Report& report, const Options& options) {
       {"seed", options.seed},   {"hardware_threads", std::thread::hardware_concurrency()},
       {"rows", rows},           {"build", builds},
       {"loop", loops}};
-  std::ofstream out(options.json);
-  if (!out) throw Error(options.json, 0, "cannot write the JSON report");
-  out << document.dump(2) << '\n';
-  if (!out) throw Error(options.json, 0, "writing the JSON report failed");
-  std::printf("wrote %s\n", options.json.c_str());
+  write_json_file(options.json, document);
 }
 
 int bench_haptics(const Options& options) {

@@ -299,10 +299,7 @@ int bench_render(const BenchOptions& options) {
                              {"cpu_ms", row.cpu_ms},
                              {"frames", row.frames}});
     }
-    std::ofstream file(options.json);
-    file << out.dump(2) << '\n';
-    if (!file) throw Error(options.json, 0, "cannot write the benchmark results");
-    std::printf("wrote %s\n", options.json.c_str());
+    write_json_file(options.json, out);
   }
   return 0;
 }

@@ -110,8 +110,7 @@ int bench_table1(const Table1Options& options) {
     for (std::size_t i = 0; i < gpu.size(); ++i)
       report["rows"][i]["cpu_naive_fps"] = naive[i].run.graphics_fps;
     report["seconds_per_row"] = options.seconds;
-    std::ofstream(options.json) << report.dump(2) << "\n";
-    std::printf("json: %s\n", options.json.c_str());
+    write_json_file(options.json, report);
   }
   return 0;
 }
@@ -123,10 +122,7 @@ void add_bench_table1_command(CLI::App& app) {
   CLI::App* table1 = add_bench_command(app).add_subcommand(
       "table1",
       "The paper's Table I: graphics fps and haptic Hz together, in contact, with the CPU-naive baseline");
-  table1
-      ->add_option("--scene", options->scene_file,
-                   "Scene file (TOML); default: the built-in brain and skin phantoms")
-      ->check(CLI::ExistingFile);
+  add_scene_option(table1, options->scene_file);
   table1->add_option("--seconds", options->seconds, "Seconds of contact for each row and renderer")
       ->capture_default_str()
       ->check(CLI::Range(0.5, 600.0));
@@ -136,12 +132,7 @@ void add_bench_table1_command(CLI::App& app) {
                    "Plot file, without extension (PNG through gnuplot, else SVG); '' for none")
       ->capture_default_str();
   table1->add_flag("--headless", options->headless, "Render through EGL even when there is a display");
-  table1->add_option("--width", options->width, "Frame width")
-      ->capture_default_str()
-      ->check(CLI::Range(64, 8192));
-  table1->add_option("--height", options->height, "Frame height")
-      ->capture_default_str()
-      ->check(CLI::Range(64, 8192));
+  add_size_options(table1, options->width, options->height, "Frame");
   on_selected(table1, [options] { return bench_table1(*options); });
 }
 

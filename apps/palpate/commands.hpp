@@ -2,6 +2,7 @@
 // Subcommand registration: each add_* registers its options and an action run after parsing.
 #include <CLI/CLI.hpp>
 #include <functional>
+#include <string>
 
 namespace palpate::cli {
 
@@ -9,6 +10,11 @@ namespace palpate::cli {
 void on_selected(CLI::App* command, std::function<int()> action);
 // Runs the action of the selected subcommand; returns its exit status.
 int run_selected(CLI::App& app);
+
+// --scene FILE (an existing scene file; empty: the built-in scene).
+void add_scene_option(CLI::App* command, std::string& scene_file);
+// --width and --height of a frame or window ("Frame", "Window"), 64 to 8192 pixels.
+void add_size_options(CLI::App* command, int& width, int& height, const std::string& what);
 
 void add_demo_command(CLI::App& app);
 void add_mesh_command(CLI::App& app);

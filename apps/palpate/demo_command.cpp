@@ -10,6 +10,7 @@
 
 #include "commands.hpp"
 #include "demo_phases.hpp"
+#include "format.hpp"
 #include "gl_session.hpp"
 #include "image.hpp"
 #include "palpate/core/scene_file.hpp"
@@ -189,10 +190,10 @@ int run_demo(const DemoOptions& options) {
   nlohmann::json report = run_report_json(gl_session.renderer, options.width, options.height, results);
   report["frames"] = {{"count", captured}, {"fps", options.video_fps}, {"at", frames_at}};
   report["key_frames"] = key_json;
-  std::ofstream(out / "report.json") << report.dump(2) << "\n";
   print_table1(stdout, gl_session.renderer, options.width, options.height, results);
-  std::printf("wrote %s/report.json, %s/contact_sheet.png, %d frames (%s)\n", out.string().c_str(),
-              out.string().c_str(), captured, frames_at.c_str());
+  write_json_file(out / "report.json", report);
+  std::printf("wrote %s/contact_sheet.png, %d frames (%s)\n", out.string().c_str(), captured,
+              frames_at.c_str());
   return 0;
 }
 
@@ -202,20 +203,13 @@ void add_demo_command(CLI::App& app) {
   auto options = std::make_shared<DemoOptions>();
   CLI::App* demo = app.add_subcommand(
       "demo", "The headless (or windowed) demo: a probe presses the skin, then slides on the brain");
-  demo->add_option("--scene", options->scene_file,
-                   "Scene file (TOML); default: the built-in brain and skin phantoms")
-      ->check(CLI::ExistingFile);
+  add_scene_option(demo, options->scene_file);
   demo->add_option("--out", options->out_dir, "Output folder")->capture_default_str();
   demo->add_option("--frames", options->frames,
                    "Stop after this many captured frames (default: the whole script)")
       ->check(CLI::PositiveNumber);
   demo->add_flag("--headless", options->headless, "Render through EGL even when there is a display");
-  demo->add_option("--width", options->width, "Frame width in pixels")
-      ->capture_default_str()
-      ->check(CLI::Range(64, 8192));
-  demo->add_option("--height", options->height, "Frame height in pixels")
-      ->capture_default_str()
-      ->check(CLI::Range(64, 8192));
+  add_size_options(demo, options->width, options->height, "Frame");
   on_selected(demo, [options] { return run_demo(*options); });
 }
 

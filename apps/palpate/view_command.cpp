@@ -335,15 +335,8 @@ int run_view(const ViewOptions& options) {
 void add_view_command(CLI::App& app) {
   auto options = std::make_shared<ViewOptions>();
   CLI::App* view = app.add_subcommand("view", "Interactive viewer: the mouse drives a virtual haptic device");
-  view->add_option("--scene", options->scene_file,
-                   "Scene file (TOML); default: the built-in brain and skin phantoms")
-      ->check(CLI::ExistingFile);
-  view->add_option("--width", options->width, "Window width")
-      ->capture_default_str()
-      ->check(CLI::Range(64, 8192));
-  view->add_option("--height", options->height, "Window height")
-      ->capture_default_str()
-      ->check(CLI::Range(64, 8192));
+  add_scene_option(view, options->scene_file);
+  add_size_options(view, options->width, options->height, "Window");
   view->add_option("--frames", options->frames, "Quit after this many frames")->check(CLI::PositiveNumber);
   view->add_option("--screenshot", options->screenshot, "With --frames: save the last frame to this PNG");
   view->add_option("--press-depth", options->press_depth_mm,

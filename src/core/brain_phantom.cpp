@@ -264,10 +264,7 @@ void place_on_surface(Mesh& mesh, const BrainShape& shape, const std::vector<glm
 }  // namespace
 
 Mesh make_brain_phantom(std::size_t vertices) {
-  if (vertices < phantom_min_vertices) {
-    throw Error("make_brain_phantom: need at least " + std::to_string(phantom_min_vertices) +
-                " vertices, got " + std::to_string(vertices));
-  }
+  detail::require_phantom_vertices("make_brain_phantom", vertices);
   Mesh mesh = make_sphere(1.0f, vertices);
   // Mean edge length on the hull (about 68 mm in radius) of a near-equilateral mesh with this many vertices.
   const double spacing = 68.0 * std::sqrt(8.0 * pi / (std::sqrt(3.0) * double(vertices)));

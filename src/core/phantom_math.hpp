@@ -2,8 +2,21 @@
 // Smooth blending helpers for the phantom generators. Private to palpate_core.
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
+#include <string>
+
+#include "palpate/core/error.hpp"
+#include "palpate/core/phantom.hpp"
 
 namespace palpate::detail {
+
+// Throws palpate::Error naming the generator when it is asked for fewer than phantom_min_vertices.
+inline void require_phantom_vertices(const char* generator, std::size_t vertices) {
+  if (vertices < phantom_min_vertices) {
+    throw Error(std::string(generator) + ": need at least " + std::to_string(phantom_min_vertices) +
+                " vertices, got " + std::to_string(vertices));
+  }
+}
 
 // 0 below edge0, 1 above edge1 (or the reverse when edge0 > edge1), C1 in between.
 inline double smoothstep(double edge0, double edge1, double x) {

@@ -155,28 +155,25 @@ Scene load_scene(const std::filesystem::path& file) {
 }
 
 Scene default_scene() {
+  const auto phantom = [](std::string name, Mesh mesh, Material material) {
+    SceneObject object;
+    object.name = std::move(name);
+    object.mesh = std::move(mesh);
+    object.material = material;
+    return object;
+  };
   Scene scene;
-  SceneObject skin;
-  skin.name = "skin";
-  skin.mesh = make_skin_phantom();
+  scene.objects.push_back(phantom("brain", make_brain_phantom(),
+                                  {.sigma_mm = 5.0f,
+                                   .stiffness_n_per_mm = 0.3f,
+                                   .damping_ns_per_m = 1.0f,
+                                   .color = {0.88f, 0.62f, 0.60f}}));
   // Skin spreads a dent widely and is stiffer than brain (the paper's Fig. 3 against Fig. 1).
-  skin.material = Material{.sigma_mm = 14.0f,
-                           .stiffness_n_per_mm = 0.8f,
-                           .damping_ns_per_m = 1.0f,
-                           .color = {0.93f, 0.76f, 0.64f},
-                           .touchable = true,
-                           .visible = true};
-  SceneObject brain;
-  brain.name = "brain";
-  brain.mesh = make_brain_phantom();
-  brain.material = Material{.sigma_mm = 5.0f,
-                            .stiffness_n_per_mm = 0.3f,
-                            .damping_ns_per_m = 1.0f,
-                            .color = {0.88f, 0.62f, 0.60f},
-                            .touchable = true,
-                            .visible = true};
-  scene.objects.push_back(std::move(brain));
-  scene.objects.push_back(std::move(skin));
+  scene.objects.push_back(phantom("skin", make_skin_phantom(),
+                                  {.sigma_mm = 14.0f,
+                                   .stiffness_n_per_mm = 0.8f,
+                                   .damping_ns_per_m = 1.0f,
+                                   .color = {0.93f, 0.76f, 0.64f}}));
   return scene;
 }
 

@@ -116,10 +116,7 @@ double skin_radius(glm::dvec3 w) {
 }  // namespace
 
 Mesh make_skin_phantom(std::size_t vertices) {
-  if (vertices < phantom_min_vertices) {
-    throw Error("make_skin_phantom: need at least " + std::to_string(phantom_min_vertices) +
-                " vertices, got " + std::to_string(vertices));
-  }
+  detail::require_phantom_vertices("make_skin_phantom", vertices);
   Mesh mesh = make_sphere(1.0f, vertices);
   for (glm::vec3& p : mesh.positions_mm) {
     const glm::dvec3 w = glm::normalize(glm::dvec3(p));

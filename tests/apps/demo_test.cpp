@@ -8,7 +8,9 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <nlohmann/json.hpp>
 
+#include "palpate/core/load.hpp"
 #include "palpate/core/scene_file.hpp"
+#include "palpate/core/shapes.hpp"
 #include "palpate/gl/framebuffer.hpp"
 #include "palpate/gl/headless_context.hpp"
 #include "palpate/gl/renderer.hpp"
@@ -138,6 +140,44 @@ TEST(DemoRun, WritesItsReportAndFramesThatShowTheDentAroundTheContactOnly) {
       test::run_command(cli + " demo --headless --frames 30 --width 480 --height 384 --out " + out.string());
   expect_files_and_report(out, result);
   if (result.exit_status == 0) expect_dent_only_around_the_contact(out);
+}
+
+// A user's own scene: an open, wavy sheet (no inside, no enclosing object). The demo aims its presses at
+// what the camera sees of it.
+std::filesystem::path write_sheet_scene(const std::filesystem::path& folder, bool touchable) {
+  Mesh sheet = make_grid(200.0f, 60);
+  for (glm::vec3& p : sheet.positions_mm) p.z = 6.0f * std::sin(p.x / 15.0f) * std::sin(p.y / 17.0f);
+  compute_vertex_normals(sheet);
+  save_mesh(sheet, folder / "sheet.ply");
+  const auto scene = folder / "sheet.toml";
+  std::ofstream(scene) << "[[object]]\nname = \"sheet\"\nmesh = \"sheet.ply\"\nsigma_mm = 8.0\ntouchable = "
+                       << (touchable ? "true" : "false") << "\n";
+  return scene;
+}
+
+TEST(DemoRun, PressesAnOpenSheetWhereTheCameraSeesIt) {
+  const auto out = test::scratch_dir("demo_sheet");
+  const auto scene = write_sheet_scene(out, true);
+  const auto result =
+      test::run_command(cli + " demo --headless --frames 40 --width 320 --height 256 --scene " +
+                        scene.string() + " --out " + (out / "run").string());
+  ASSERT_EQ(result.exit_status, 0) << result.output;
+  std::ifstream file(out / "run" / "report.json");
+  const nlohmann::json report = nlohmann::json::parse(file);
+  bool pressed = false;
+  for (const auto& key : report["key_frames"]) pressed |= key["contact"]["depth_mm"].get<float>() > 1.0f;
+  EXPECT_TRUE(pressed) << "no key frame shows the probe pressing the sheet";
+}
+
+TEST(DemoRun, ASceneWithNothingToPressSaysSoInOneLine) {
+  const auto out = test::scratch_dir("demo_untouchable");
+  const auto scene = write_sheet_scene(out, false);
+  const auto result = test::run_command(cli + " demo --headless --frames 5 --scene " + scene.string() +
+                                        " --out " + (out / "run").string() + " 2>&1");
+  EXPECT_EQ(result.exit_status, 1);
+  EXPECT_EQ(result.output,
+            "palpate: error: the scene has no object that is visible and touchable: nothing for the probe to "
+            "press\n");
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// The proxy on the generated anatomy (issue 3, item 5): random and adversarial moves against the brain
+// The proxy on the generated anatomy: random and adversarial moves against the brain
 // phantom, the skin phantom and both together, at the paper's Table I sizes, checked tick by tick as in
 // proxy_moves_test.cpp (see proxy_move_tester.hpp).
 //
