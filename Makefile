@@ -5,7 +5,7 @@ JOBS   ?= $(shell nproc)
 # ON turns compiler warnings into errors (CI sets it)
 WERROR ?= OFF
 
-.PHONY: all deps configure build demo test test-asan test-tsan bench format format-check clean
+.PHONY: all deps configure build demo test test-asan test-tsan bench mutants format format-check clean
 
 all: build
 
@@ -35,6 +35,11 @@ test-tsan:
 bench: build
 	$(BUILD)/apps/palpate bench haptics --quick
 	$(BUILD)/apps/palpate bench render --quick
+
+# Does the suite catch one-line bugs? tests/mutants.tsv, each applied alone to a scratch copy (slow:
+# not in CI; run it before resolving work on the parts it covers).
+mutants: deps
+	@./scripts/mutants.py
 
 format:
 	git ls-files '*.cpp' '*.hpp' '*.h' | xargs clang-format -i

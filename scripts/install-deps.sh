@@ -9,7 +9,7 @@ packages=(
   libtomlplusplus-dev libcli11-dev libstb-dev libqhull-dev
   libepoxy-dev libegl-dev libegl1 libegl-mesa0 libgl1-mesa-dri libgl-dev libglfw3-dev libimgui-dev
   libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev
-  xvfb xauth gnuplot-nox clang-format
+  xvfb xauth gnuplot-nox clang-format python3
 )
 
 missing=()

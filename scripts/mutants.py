@@ -31,7 +31,8 @@ def read_mutants(path):
             fields = line.split("\t")
             if len(fields) != 4:
                 sys.exit(f"mutants: {path}:{number}: expected 4 tab-separated fields, got {len(fields)}")
-            mutants.append({"line": number, "file": fields[0], "find": fields[1], "replace": fields[2],
+            find, replace = (field.replace("\\n", "\n") for field in fields[1:3])
+            mutants.append({"line": number, "file": fields[0], "find": find, "replace": replace,
                             "tests": fields[3]})
     return mutants
 

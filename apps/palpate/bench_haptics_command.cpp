@@ -33,7 +33,14 @@ struct Options {
   bool quick = false;
   std::string json;
   std::uint32_t seed = 1;
+  int cycles = 0;             // > 0: this many cycles in every scenario (a smoke run)
+  double loop_seconds = 0.0;  // > 0: the haptic thread runs this long per row
 };
+
+// The scenario's own cycle count, unless the command line asks for another.
+int cycles(const Options& options, int usual) {
+  return options.cycles > 0 ? options.cycles : usual;
+}
 
 struct TickRow {
   std::string scenario, mesh;
@@ -126,7 +133,7 @@ void bench_table1(const Options& options, Report& report) {
     bool brain, skin;
   };
   // The brain's folds end a press-slide within about 6 mm (see surface_press_slides): more cycles.
-  const testing::CycleShape press{.cycles = options.quick ? 10 : 25, .seed = options.seed};
+  const testing::CycleShape press{.cycles = cycles(options, options.quick ? 10 : 25), .seed = options.seed};
   testing::CycleShape hover = press;
   hover.press_depth_mm = -3.0f;  // 2 to 4 mm above the surface
   hover.depth_amplitude_mm = 1.0f;
@@ -164,12 +171,12 @@ void bench_sphere_slide(const Options& options, Report& report) {
     const std::string name = "bumpy-sphere-" + std::to_string(scene.objects[0].mesh.triangle_count());
     const Prepared prepared = prepare(std::move(scene), name, report);
     const std::size_t triangles = prepared.bvh.triangle_count();
-    const testing::CycleShape slide{.cycles = 50, .seed = options.seed};
+    const testing::CycleShape slide{.cycles = cycles(options, 50), .seed = options.seed};
     add_rows("sphere-slide", name, triangles,
              testing::run_scenario(prepared.scene, prepared.bvh, testing::sphere_slide(oracle, slide), 1e3f,
                                    &oracle),
              false, true, report);
-    testing::CycleShape hover{.cycles = 10, .seed = options.seed + 1};
+    testing::CycleShape hover{.cycles = cycles(options, 10), .seed = options.seed + 1};
     hover.press_depth_mm = -3.0f;
     hover.depth_amplitude_mm = 1.0f;
     add_rows("sphere-hover", name, triangles,
@@ -219,7 +226,7 @@ void bench_loops(const Options& options, Report& report) {
       testing::surface_press_slides(prepared.scene, prepared.scene.objects.size() - 1,
                                     testing::MeshOracle(prepared.scene), {.cycles = 1, .seed = options.seed})
           .front();
-  const double seconds = options.quick ? 3.0 : 10.0;
+  const double seconds = options.loop_seconds > 0.0 ? options.loop_seconds : (options.quick ? 3.0 : 10.0);
   std::vector<double> rates{1000.0};
   if (!options.quick) rates.push_back(10'000.0);
   for (const double rate : rates) {
@@ -349,6 +356,10 @@ void add_bench_haptics_command(CLI::App& app) {
   haptics->add_option("--json", options->json, "Also write the results to this JSON file");
   haptics->add_option("--seed", options->seed, "Seed of the random surface points and directions")
       ->capture_default_str();
+  haptics->add_option("--cycles", options->cycles, "Cycles of every scenario (default: 10 to 50 each)")
+      ->check(CLI::PositiveNumber);
+  haptics->add_option("--loop-seconds", options->loop_seconds, "Seconds the haptic thread runs per row")
+      ->check(CLI::Range(0.1, 600.0));
   on_selected(haptics, [options] { return bench_haptics(*options); });
 }
 

@@ -25,9 +25,8 @@ void on_selected(CLI::App* command, std::function<int()> action) {
 }
 
 void add_scene_option(CLI::App* command, std::string& scene_file) {
-  command
-      ->add_option("--scene", scene_file, "Scene file (TOML); default: the built-in brain and skin phantoms")
-      ->check(CLI::ExistingFile);
+  command->add_option("--scene", scene_file,
+                      "Scene file (TOML); default: the built-in brain and skin phantoms");
 }
 
 void add_size_options(CLI::App* command, int& width, int& height, const std::string& what) {

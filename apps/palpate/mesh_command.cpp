@@ -77,13 +77,12 @@ void add_mesh_command(CLI::App& app) {
   info->add_option(
           "files", *files,
           "Model files (.wrl .wrl.gz .iv .obj .ply .stl .off .gltf .glb .gii) or scene files (.toml)")
-      ->required()
-      ->check(CLI::ExistingFile);
+      ->required();
   on_selected(info, [files] { return mesh_info(*files); });
 
   auto in = std::make_shared<std::string>(), out = std::make_shared<std::string>();
   CLI::App* convert = group->add_subcommand("convert", "Convert a model to VRML97 (.wrl) or PLY (.ply)");
-  convert->add_option("input", *in, "Model file to read")->required()->check(CLI::ExistingFile);
+  convert->add_option("input", *in, "Model file to read")->required();
   convert->add_option("output", *out, "File to write; the format follows the extension")->required();
   on_selected(convert, [in, out] {
     const Mesh mesh = load_mesh(*in, warn_on_stderr());

@@ -324,6 +324,14 @@ int run_view(const ViewOptions& options) {
     if (last_frame) window.request_close();
   }
   loop.stop();
+  const TickResult last = loop.latest();
+  if (last.contact.in_contact()) {
+    std::printf("palpate view: %d frames; last tick: on '%s', p = %.2f mm, |F| = %.2f N\n", frame,
+                scene.objects[std::size_t(last.contact.object)].name.c_str(), last.contact.depth_mm,
+                glm::length(last.force_n));
+  } else {
+    std::printf("palpate view: %d frames; last tick: free\n", frame);
+  }
   ImGui_ImplOpenGL3_Shutdown();
   ImGui_ImplGlfw_Shutdown();
   ImGui::DestroyContext();

@@ -40,8 +40,8 @@ glm::vec2 project(const glm::mat4& view_projection, glm::vec3 p, int width, int 
 
 // One run of the demo serves both checks (ctest runs each test in a process of its own).
 void expect_files_and_report(const std::filesystem::path& out, const test::CommandResult& result) {
-  ASSERT_EQ(result.exit_status, 0) << result.output;
-  EXPECT_NE(result.output.find("TABLE I"), std::string::npos) << result.output;
+  ASSERT_EQ(result.exit_status, 0) << result.both();
+  EXPECT_NE(result.out.find("TABLE I"), std::string::npos) << result.both();
   EXPECT_TRUE(std::filesystem::is_regular_file(out / "contact_sheet.png"));
   const bool video = std::filesystem::is_regular_file(out / "demo.mp4");
   if (!video) {
@@ -161,7 +161,7 @@ TEST(DemoRun, PressesAnOpenSheetWhereTheCameraSeesIt) {
   const auto result =
       test::run_command(cli + " demo --headless --frames 40 --width 320 --height 256 --scene " +
                         scene.string() + " --out " + (out / "run").string());
-  ASSERT_EQ(result.exit_status, 0) << result.output;
+  ASSERT_EQ(result.exit_status, 0) << result.both();
   std::ifstream file(out / "run" / "report.json");
   const nlohmann::json report = nlohmann::json::parse(file);
   bool pressed = false;
@@ -173,9 +173,9 @@ TEST(DemoRun, ASceneWithNothingToPressSaysSoInOneLine) {
   const auto out = test::scratch_dir("demo_untouchable");
   const auto scene = write_sheet_scene(out, false);
   const auto result = test::run_command(cli + " demo --headless --frames 5 --scene " + scene.string() +
-                                        " --out " + (out / "run").string() + " 2>&1");
+                                        " --out " + (out / "run").string());
   EXPECT_EQ(result.exit_status, 1);
-  EXPECT_EQ(result.output,
+  EXPECT_EQ(result.err,
             "palpate: error: the scene has no object that is visible and touchable: nothing for the probe to "
             "press\n");
 }

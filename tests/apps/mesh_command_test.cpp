@@ -17,16 +17,16 @@ TEST(MeshCommand, PhantomThenInfoReportsTheTableOneCountsAndTopology) {
   const auto dir = test::scratch_dir("mesh_command_phantom");
   const auto brain = (dir / "brain.ply").string();
   const auto made = test::run_command(cli + " mesh phantom --brain -o " + brain);
-  ASSERT_EQ(made.exit_status, 0) << made.output;
-  EXPECT_NE(made.output.find("68,856 vertices"), std::string::npos) << made.output;
+  ASSERT_EQ(made.exit_status, 0) << made.both();
+  EXPECT_NE(made.out.find("68,856 vertices"), std::string::npos) << made.both();
 
   const auto info = test::run_command(cli + " mesh info " + brain);
-  ASSERT_EQ(info.exit_status, 0) << info.output;
-  EXPECT_NE(info.output.find("vertices    68,856"), std::string::npos) << info.output;
-  EXPECT_NE(info.output.find("triangles   137,708"), std::string::npos) << info.output;
-  EXPECT_NE(info.output.find("closed      yes"), std::string::npos) << info.output;
-  EXPECT_NE(info.output.find("manifold    yes"), std::string::npos) << info.output;
-  EXPECT_NE(info.output.find("load time"), std::string::npos) << info.output;
+  ASSERT_EQ(info.exit_status, 0) << info.both();
+  EXPECT_NE(info.out.find("vertices    68,856"), std::string::npos) << info.both();
+  EXPECT_NE(info.out.find("triangles   137,708"), std::string::npos) << info.both();
+  EXPECT_NE(info.out.find("closed      yes"), std::string::npos) << info.both();
+  EXPECT_NE(info.out.find("manifold    yes"), std::string::npos) << info.both();
+  EXPECT_NE(info.out.find("load time"), std::string::npos) << info.both();
 }
 
 TEST(MeshCommand, ConvertKeepsTheGeometry) {
@@ -36,7 +36,7 @@ TEST(MeshCommand, ConvertKeepsTheGeometry) {
             0);
   const auto converted = test::run_command(cli + " mesh convert " + (dir / "skin.ply").string() + " " +
                                            (dir / "skin.wrl").string());
-  ASSERT_EQ(converted.exit_status, 0) << converted.output;
+  ASSERT_EQ(converted.exit_status, 0) << converted.both();
   const Mesh back = load_mesh(dir / "skin.wrl");
   EXPECT_EQ(back.vertex_count(), 2000u);
   EXPECT_EQ(back.triangle_count(), 3996u);
@@ -46,28 +46,42 @@ TEST(MeshCommand, ConvertKeepsTheGeometry) {
 TEST(MeshCommand, InfoReadsTheExampleSceneFile) {
   const auto info =
       test::run_command(cli + " mesh info " + (test::source_dir() / "examples/scenes/default.toml").string());
-  ASSERT_EQ(info.exit_status, 0) << info.output;
-  EXPECT_NE(info.output.find("objects     2"), std::string::npos) << info.output;
-  EXPECT_NE(info.output.find("vertices    159,063"), std::string::npos) << info.output;
-  EXPECT_NE(info.output.find("components  2"), std::string::npos) << info.output;
+  ASSERT_EQ(info.exit_status, 0) << info.both();
+  EXPECT_NE(info.out.find("objects     2"), std::string::npos) << info.both();
+  EXPECT_NE(info.out.find("vertices    159,063"), std::string::npos) << info.both();
+  EXPECT_NE(info.out.find("components  2"), std::string::npos) << info.both();
 }
 
-TEST(MeshCommand, ErrorsGoToStderrWithANonZeroExit) {
+TEST(MeshCommand, ErrorsGoToStderrInPalpatesFormatWithStatusOne) {
   const auto dir = test::scratch_dir("mesh_command_errors");
-  const auto missing = test::run_command(cli + " mesh info " + (dir / "absent.ply").string());
-  EXPECT_NE(missing.exit_status, 0);
-  EXPECT_NE(missing.output.find("absent.ply"), std::string::npos) << missing.output;
+  const auto absent = (dir / "absent.ply").string();
+  const auto missing = test::run_command(cli + " mesh info " + absent);
+  EXPECT_EQ(missing.exit_status, 1);
+  EXPECT_EQ(missing.out, "");
+  EXPECT_EQ(missing.err, "palpate: error: " + absent + ": no such file\n");
 
   std::ofstream(dir / "garbage.ply") << "ply\nformat ascii 1.0\nelement vertex 3\nend_header\n1 2\n";
   const auto garbage = test::run_command(cli + " mesh info " + (dir / "garbage.ply").string());
-  EXPECT_NE(garbage.exit_status, 0);
-  EXPECT_NE(garbage.output.find("garbage.ply"), std::string::npos) << garbage.output;
+  EXPECT_EQ(garbage.exit_status, 1);
+  EXPECT_EQ(garbage.err.rfind("palpate: error: " + (dir / "garbage.ply").string() + ":", 0), 0u)
+      << garbage.err;
 
+  // Command-line mistakes too: palpate's format and status, not the parser's.
   const auto both = test::run_command(cli + " mesh phantom --brain --skin -o " + (dir / "x.ply").string());
-  EXPECT_NE(both.exit_status, 0);
+  EXPECT_EQ(both.exit_status, 1);
+  EXPECT_EQ(both.err, "palpate: error: --brain excludes --skin (see --help)\n");
+  const auto range = test::run_command(cli + " demo --width 5");
+  EXPECT_EQ(range.exit_status, 1);
+  EXPECT_EQ(range.err, "palpate: error: --width: Value 5 not in range 64 to 8192 (see --help)\n");
+  const auto no_scene = test::run_command(cli + " demo --scene " + (dir / "absent.toml").string());
+  EXPECT_EQ(no_scene.exit_status, 1);
+  EXPECT_EQ(no_scene.err,
+            "palpate: error: " + (dir / "absent.toml").string() + ": cannot open scene file: no such file\n");
+
   const auto help = test::run_command(cli + " mesh --help");
   EXPECT_EQ(help.exit_status, 0);
-  EXPECT_NE(help.output.find("phantom"), std::string::npos);
+  EXPECT_NE(help.out.find("phantom"), std::string::npos) << help.both();
+  EXPECT_EQ(help.err, "");
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
-// `palpate view` under Xvfb: it starts, draws, takes a screenshot that is not empty, and quits cleanly.
+// `palpate view` under Xvfb: it starts, draws the head, presses it through the haptic loop, takes a
+// screenshot and quits cleanly.
 #include <gtest/gtest.h>
 #include <stb/stb_image.h>
 
-#include <set>
+#include <cstdio>
 
 #include "run_command.hpp"
 #include "test_paths.hpp"
@@ -21,18 +22,38 @@ TEST(ViewCommand, RunsUnderXvfbAndTakesAScreenshot) {
       " && ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" xvfb-run -a -s '-screen 0 1024x768x24' " +
       std::string(PALPATE_CLI) + " view --width 800 --height 600 --frames 15 --press-depth 4 --screenshot " +
       shot.string());
-  ASSERT_EQ(run.exit_status, 0) << run.output;
+  ASSERT_EQ(run.exit_status, 0) << run.both();
   int width = 0, height = 0, channels = 0;
   stbi_uc* pixels = stbi_load(shot.c_str(), &width, &height, &channels, 3);
-  ASSERT_NE(pixels, nullptr) << run.output;
+  ASSERT_NE(pixels, nullptr) << run.both();
   EXPECT_EQ(width, 800);
   EXPECT_EQ(height, 600);
-  // Not empty: the background, the head and the panel give many distinct colours.
-  std::set<int> colours;
-  for (int i = 0; i < width * height; ++i)
-    colours.insert(pixels[3 * i] << 16 | pixels[3 * i + 1] << 8 | pixels[3 * i + 2]);
+  // The head fills the middle of the window, lit in the skin's colour (linear 0.93, 0.76, 0.64): not the
+  // background (0.08, 0.09, 0.11), not black. The panel covers the left 370 pixels.
+  int skin = 0, sampled = 0;
+  for (int y = height / 4; y < 3 * height / 4; y += 4) {
+    for (int x = width / 2; x < 13 * width / 20; x += 4) {
+      const stbi_uc* p = &pixels[3 * (y * width + x)];
+      ++sampled;
+      skin += p[0] > 60 && p[0] > p[1] && p[1] > p[2];
+    }
+  }
   stbi_image_free(pixels);
-  EXPECT_GT(colours.size(), 200u);
+  EXPECT_GT(skin, sampled * 8 / 10) << skin << " of " << sampled << " pixels in the middle look like skin";
+  // The tip was put 4 mm into the skin along the view ray through the centre: the haptic loop ran and
+  // pushes back with k p, k = 0.8 N/mm, p the depth along the surface normal (4 mm times the cosine of
+  // the ray's angle to it). The printout is the loop's last tick result.
+  float depth = 0.0f, force = 0.0f;
+  const auto line = run.out.find("palpate view: 15 frames; last tick: on 'skin', p = ");
+  ASSERT_NE(line, std::string::npos) << run.both();
+  ASSERT_EQ(
+      std::sscanf(run.out.c_str() + line,
+                  "palpate view: 15 frames; last tick: on 'skin', p = %f mm, |F| = %f N", &depth, &force),
+      2)
+      << run.both();
+  EXPECT_GT(depth, 3.5f);
+  EXPECT_LE(depth, 4.0f);
+  EXPECT_NEAR(force, 0.8f * depth, 0.011f);
 }
 
 }  // namespace

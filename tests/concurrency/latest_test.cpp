@@ -1,14 +1,19 @@
-// Latest<T> under one writer and several readers: every value read was written whole by one store,
-// and a reader never sees the version go back.
+// Latest<T> under one writer and several readers: every value read was written whole by one store, a
+// reader never sees the version go back, the readers really did read while stores were under way (or
+// the test could not have seen a torn value), and neither side allocates.
 #include "palpate/haptics/latest.hpp"
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <array>
 #include <atomic>
+#include <chrono>
 #include <cstdint>
 #include <thread>
 #include <vector>
+
+#include "allocation_counter.hpp"
 
 namespace palpate {
 namespace {
@@ -53,34 +58,44 @@ TEST(LatestTest, LoadReturnsTheLastStoreAndCountsVersions) {
 }
 
 TEST(LatestTest, ReadersNeverSeeATornOrOlderValueUnderAConcurrentWriter) {
-  constexpr std::uint64_t stores = 500'000;
   constexpr int reader_count = 3;
+  // Each reader must see the value change under it this often (reads and stores interleaving), or a
+  // torn read could not have shown; the writer stores until they have, however the threads are scheduled.
+  constexpr std::uint64_t wanted_changes = 1000;
   Latest<Redundant> channel(make_redundant(0));
   std::atomic<bool> done{false};
   struct ReaderResult {
-    std::uint64_t reads = 0, torn = 0, backwards = 0, distinct = 0;
+    std::uint64_t reads = 0, torn = 0, backwards = 0, last = 0;
+    std::atomic<std::uint64_t> changes{0};
   };
   std::vector<ReaderResult> results(reader_count);
   std::vector<std::thread> readers;
   for (int r = 0; r < reader_count; ++r) {
     readers.emplace_back([&, r] {
       ReaderResult& result = results[std::size_t(r)];
-      std::uint64_t last = 0;
       // Read at least until the writer is done, and once more after.
       for (bool finished = false; !finished;) {
         finished = done.load(std::memory_order_acquire);
         const Redundant value = channel.load();
         ++result.reads;
         if (!whole(value)) ++result.torn;
-        if (value.serial < last) ++result.backwards;
-        if (value.serial != last) ++result.distinct;
-        last = value.serial;
+        if (value.serial < result.last) ++result.backwards;
+        if (value.serial != result.last) result.changes.fetch_add(1, std::memory_order_relaxed);
+        result.last = value.serial;
       }
-      EXPECT_EQ(last, stores) << "the last read after the writer finished sees the last store";
     });
   }
+  std::uint64_t stores = 0;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(60);
   std::thread writer([&] {
-    for (std::uint64_t serial = 1; serial <= stores; ++serial) channel.store(make_redundant(serial));
+    const auto enough = [&] {
+      return std::all_of(results.begin(), results.end(), [&](const ReaderResult& result) {
+        return result.changes.load(std::memory_order_relaxed) >= wanted_changes;
+      });
+    };
+    while ((stores % 1024 != 0 || !enough()) && std::chrono::steady_clock::now() < until) {
+      channel.store(make_redundant(++stores));
+    }
     done.store(true, std::memory_order_release);
   });
   writer.join();
@@ -88,9 +103,48 @@ TEST(LatestTest, ReadersNeverSeeATornOrOlderValueUnderAConcurrentWriter) {
   for (const ReaderResult& result : results) {
     EXPECT_EQ(result.torn, 0u);
     EXPECT_EQ(result.backwards, 0u);
-    EXPECT_GT(result.reads, 0u);
+    EXPECT_GE(result.changes.load(), wanted_changes) << "the reader hardly overlapped the writer";
+    EXPECT_EQ(result.last, stores) << "the last read after the writer finished sees the last store";
   }
   EXPECT_EQ(channel.version(), stores);
+}
+
+// try_load never waits: while a writer stores without pause, some attempts find a store under way and
+// say so (false) rather than wait, and every attempt that succeeds holds a whole value.
+TEST(LatestTest, TryLoadReportsAStoreUnderWayInsteadOfWaiting) {
+  Latest<Redundant> channel(make_redundant(0));
+  std::atomic<bool> done{false};
+  std::thread writer([&] {
+    for (std::uint64_t serial = 1; !done.load(std::memory_order_relaxed); ++serial) {
+      channel.store(make_redundant(serial));
+    }
+  });
+  std::uint64_t refused = 0, torn = 0;
+  Redundant out;
+  for (int attempt = 0; attempt < 2'000'000 && refused < 100; ++attempt) {
+    if (!channel.try_load(out)) {
+      ++refused;
+    } else if (!whole(out)) {
+      ++torn;
+    }
+  }
+  done.store(true, std::memory_order_relaxed);
+  writer.join();
+  EXPECT_GT(refused, 0u) << "no attempt overlapped a store";
+  EXPECT_EQ(torn, 0u);
+}
+
+TEST(LatestTest, StoreAndLoadNeverAllocate) {
+  Latest<Redundant> channel(make_redundant(0));
+  test::count_allocations_on_this_thread();
+  const std::uint64_t before = test::counted_allocations();
+  std::uint64_t sum = 0;
+  for (std::uint64_t serial = 1; serial <= 10'000; ++serial) {
+    channel.store(make_redundant(serial));
+    sum += channel.load().serial;
+  }
+  EXPECT_EQ(test::counted_allocations(), before);
+  EXPECT_EQ(sum, 10'000u * 10'001u / 2u);
 }
 
 TEST(LatestTest, TryLoadSucceedsWhenNoStoreIsUnderWay) {

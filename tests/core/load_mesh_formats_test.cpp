@@ -1,6 +1,7 @@
 // OBJ, PLY, STL and OFF through assimp, and palpate's two writers read back.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <glm/geometric.hpp>
 #include <string>
@@ -26,10 +27,11 @@ std::filesystem::path write_text(const std::string& name, const std::string& tex
 }
 
 // A tetrahedron with outward counter-clockwise faces, in OBJ with one normal per face (`f a//n`):
-// assimp splits its 4 positions into 12 vertices; palpate welds them back.
+// assimp splits its 4 positions into 12 vertices; palpate welds them back. Stretched along x, so the
+// faces at the origin differ in area: 1 (z = 0), 1 (y = 0) and 1/2 (x = 0).
 const char* kTetrahedronObj =
-    "v 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 1\n"
-    "vn 0 0 -1\nvn 0 -1 0\nvn -1 0 0\nvn 0.57735 0.57735 0.57735\n"
+    "v 0 0 0\nv 2 0 0\nv 0 1 0\nv 0 0 1\n"
+    "vn 0 0 -1\nvn 0 -1 0\nvn -1 0 0\nvn 0.333333 0.666667 0.666667\n"
     "f 1//1 3//1 2//1\nf 1//2 2//2 4//2\nf 1//3 4//3 3//3\nf 2//4 3//4 4//4\n";
 
 TEST(LoadObj, PerFaceNormalsAreWeldedToTheFilesPositions) {
@@ -39,13 +41,15 @@ TEST(LoadObj, PerFaceNormalsAreWeldedToTheFilesPositions) {
   const MeshTopology topology = analyze_topology(m);
   EXPECT_TRUE(topology.closed());
   EXPECT_TRUE(topology.oriented());
-  // The normals disagree at every vertex, so they are area-weighted over the welded faces:
-  // at the origin the three axis-aligned faces, each of area 1/2.
-  for (std::size_t v = 0; v < 4; ++v) {
-    if (m.positions_mm[v] == glm::vec3(0.0f)) {
-      EXPECT_NEAR(glm::dot(m.normals[v], glm::normalize(glm::vec3(-1.0f))), 1.0f, 1e-5f);
-    }
-  }
+  // The normals disagree at every vertex, so they are area-weighted over the welded faces: at the
+  // origin -(1/2, 1, 1) normalised, (-1, -2, -2) / 3 (weighting the faces alike would give (-1, -1, -1)
+  // / sqrt(3), 15.8 degrees away).
+  const auto origin = std::find(m.positions_mm.begin(), m.positions_mm.end(), glm::vec3(0.0f));
+  ASSERT_NE(origin, m.positions_mm.end());
+  const glm::vec3 n = m.normals[std::size_t(origin - m.positions_mm.begin())];
+  EXPECT_NEAR(n.x, -1.0f / 3.0f, 1e-5f);
+  EXPECT_NEAR(n.y, -2.0f / 3.0f, 1e-5f);
+  EXPECT_NEAR(n.z, -2.0f / 3.0f, 1e-5f);
 }
 
 TEST(LoadObj, PolygonsAreTriangulatedAndGroupsKept) {

@@ -71,6 +71,22 @@ visible = false
   EXPECT_FALSE(scene.objects[1].material.visible);
 }
 
+// rotate_deg turns about x, then y, then z (fixed axes): R = Rz(60) Ry(45) Rx(30), worked by hand:
+// (1, 2, 3) goes to (1.424704, 2.931761, 1.837117); then the translation.
+TEST(SceneFile, RotatesAboutXThenYThenZ) {
+  const auto file = write_scene("rotated", R"([[object]]
+name = "box"
+mesh = "phantom:skin"
+translate = [1, -2, 0.5]
+rotate_deg = [30, 45, 60]
+)");
+  const SceneObject& box = load_scene(file).objects[0];
+  const glm::vec3 moved = glm::vec3(box.transform * glm::vec4(1, 2, 3, 1));
+  EXPECT_NEAR(moved.x, 1.424704f + 1.0f, 1e-5f);
+  EXPECT_NEAR(moved.y, 2.931761f - 2.0f, 1e-5f);
+  EXPECT_NEAR(moved.z, 1.837117f + 0.5f, 1e-5f);
+}
+
 TEST(SceneFile, ErrorsNameTheFileAndLine) {
   EXPECT_EQ(
       load_error("unknown_key", "[[object]]\nname = \"a\"\nmesh = \"phantom:skin\"\nsigma = 3\n").line(), 4);

@@ -10,10 +10,11 @@
 namespace palpate::detail {
 namespace {
 
-// Two triangles of a square, then a third folded up along the edge x = 1 by `fold` radians.
+// Two triangles of a square, then a third folded up along the edge x = 1 by `fold` radians, twice as
+// long as the square's side (so twice the area of each half of the square).
 TriangleSoup folded_strip(float fold) {
   const glm::vec3 a(0, 0, 0), b(1, 0, 0), c(1, 1, 0), d(0, 1, 0);
-  const glm::vec3 e(1 + std::cos(fold), 0, std::sin(fold));
+  const glm::vec3 e(1 + 2 * std::cos(fold), 0, 2 * std::sin(fold));
   TriangleSoup soup;
   soup.positions_mm = {a, b, c, a, c, d, b, e, c};
   return soup;
@@ -27,15 +28,19 @@ TEST(MeshFromSoup, CreaseAngleDecidesWhereVerticesSplit) {
 }
 
 TEST(MeshFromSoup, SmoothNormalIsAreaWeighted) {
-  // At b: the square's half (area 1/2, normal +z) and the folded triangle (area sin(90°)/2 at fold
-  // 90°, normal -x): the sum is (-1, 0, 1)/2, so the normal is at 45°.
+  // At b: the square's half (area 1/2, normal +z) and the folded triangle (area 1 at fold 90°, normal
+  // -x): the area-weighted sum is (-1, 0, 1/2), the normal (-2, 0, 1) / sqrt(5). Weighting the two
+  // faces alike would give (-1, 0, 1) / sqrt(2).
   const Mesh m = mesh_from_soup(folded_strip(std::numbers::pi_v<float> / 2), std::numbers::pi_v<float>);
+  int found = 0;
   for (std::size_t v = 0; v < m.vertex_count(); ++v) {
-    if (m.positions_mm[v] == glm::vec3(1, 0, 0)) {
-      EXPECT_NEAR(m.normals[v].x, -std::sqrt(0.5f), 1e-6f);
-      EXPECT_NEAR(m.normals[v].z, std::sqrt(0.5f), 1e-6f);
-    }
+    if (m.positions_mm[v] != glm::vec3(1, 0, 0)) continue;
+    ++found;
+    EXPECT_NEAR(m.normals[v].x, -2.0f / std::sqrt(5.0f), 1e-6f);
+    EXPECT_NEAR(m.normals[v].y, 0.0f, 1e-6f);
+    EXPECT_NEAR(m.normals[v].z, 1.0f / std::sqrt(5.0f), 1e-6f);
   }
+  EXPECT_EQ(found, 1) << "b is one smooth vertex";
 }
 
 TEST(MeshFromSoup, ColoursSplitVertices) {

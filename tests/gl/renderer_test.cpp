@@ -22,11 +22,12 @@ namespace {
 
 constexpr int size = 512;
 
-Scene scene_of(Mesh mesh, float sigma_mm = 5.0f) {
+Scene scene_of(Mesh mesh, float sigma_mm = 5.0f, const glm::mat4& transform = glm::mat4(1.0f)) {
   Scene scene;
   SceneObject object;
   object.name = "test mesh";
   object.mesh = std::move(mesh);
+  object.transform = transform;
   object.material.sigma_mm = sigma_mm;
   scene.objects.push_back(std::move(object));
   return scene;
@@ -88,14 +89,20 @@ AngleStats stats(std::vector<float> angles) {
   return s;
 }
 
+// Largest mean and p99 angle error allowed, degrees: about three times what was measured.
+struct Tolerance {
+  float mean_deg, p99_deg;
+};
+
 // The per-fragment normals of the GPU path against the true ones: the CPU-deformed mesh (deform_mesh,
-// exact area-weighted normals of the deformed triangles) drawn undeformed, its vertex normals
-// interpolated. Over all covered pixels, and over those inside the dent alone (where the reference
-// leans more than 1 degree off the undeformed normal).
-void expect_true_normals(const Mesh& mesh, const Dent& dent, const Camera& camera) {
-  const Scene original = scene_of(mesh, dent.sigma_mm);
+// exact area-weighted normals of the deformed triangles, in world space) drawn undeformed, its vertex
+// normals interpolated. Over all covered pixels, and over those inside the dent alone (where the
+// reference leans more than 1 degree off the undeformed normal). The object stands at `transform`.
+void expect_true_normals(const Mesh& mesh, const Dent& dent, const Camera& camera, Tolerance all_pixels,
+                         Tolerance dent_pixels, const glm::mat4& transform = glm::mat4(1.0f)) {
+  const Scene original = scene_of(mesh, dent.sigma_mm, transform);
   Mesh deformed;
-  deform_mesh(mesh, glm::mat4(1.0f), {&dent, 1}, deformed);
+  deform_mesh(mesh, transform, {&dent, 1}, deformed);
   const Scene reference_scene = scene_of(deformed, dent.sigma_mm);
   const ObjectDent dents[] = {{0, dent}};
 
@@ -124,10 +131,10 @@ void expect_true_normals(const Mesh& mesh, const Dent& dent, const Camera& camer
   EXPECT_GT(overall.pixels, 20000u);
   EXPECT_GT(dent_only.pixels, 2000u) << "the dent covers too few pixels to judge";
   EXPECT_GT(deepest_lean, 15.0f) << "the dent hardly tilts the surface: the test could not fail";
-  EXPECT_LE(overall.mean, 2.0f);
-  EXPECT_LE(overall.p99, 5.0f);
-  EXPECT_LE(dent_only.mean, 2.0f);
-  EXPECT_LE(dent_only.p99, 5.0f);
+  EXPECT_LE(overall.mean, all_pixels.mean_deg);
+  EXPECT_LE(overall.p99, all_pixels.p99_deg);
+  EXPECT_LE(dent_only.mean, dent_pixels.mean_deg);
+  EXPECT_LE(dent_only.p99, dent_pixels.p99_deg);
   std::printf(
       "normal error, all %zu px: mean %.3f p99 %.3f max %.2f deg; in the dent %zu px: mean %.3f p99 %.3f "
       "max %.2f deg (the dent leans up to %.1f deg)\n",
@@ -138,15 +145,32 @@ void expect_true_normals(const Mesh& mesh, const Dent& dent, const Camera& camer
 TEST(RendererNormals, FinePlaneMatchesTheTrueNormals) {
   test::gl_context();
   const Mesh plane = make_grid(80.0f, 240);  // 0.33 mm cells
+  // Measured: mean 0.008, p99 0.089 degrees; in the dent 0.021, 0.083.
   expect_true_normals(plane, Dent{{3.0f, 2.0f, 0.0f}, 3.0f, 5.0f},
-                      looking_at({0.0f, -45.0f, 50.0f}, {0, 0, 0}));
+                      looking_at({0.0f, -45.0f, 50.0f}, {0, 0, 0}), {0.025f, 0.27f}, {0.065f, 0.25f});
+}
+
+// The same plane turned 35 degrees about (1, 2, 0.5) and moved: the renderer must carry the object's
+// rotation into the positions and the normals.
+TEST(RendererNormals, RotatedPlaneMatchesTheTrueNormals) {
+  test::gl_context();
+  const Mesh plane = make_grid(80.0f, 240);
+  const glm::mat4 transform = glm::rotate(glm::translate(glm::mat4(1.0f), {4.0f, -3.0f, 2.0f}),
+                                          glm::radians(35.0f), glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f)));
+  const glm::vec3 contact = glm::vec3(transform * glm::vec4(3.0f, 2.0f, 0.0f, 1.0f));
+  expect_true_normals(plane, Dent{contact, 3.0f, 5.0f},
+                      looking_at({0.0f, -60.0f, 60.0f}, {4.0f, -3.0f, 2.0f}), {0.025f, 0.27f},
+                      {0.065f, 0.25f}, transform);
 }
 
 TEST(RendererNormals, FineSphereMatchesTheTrueNormals) {
   test::gl_context();
   const Mesh sphere = make_sphere(40.0f, 80000);
   const glm::vec3 contact = glm::normalize(glm::vec3(0.3f, -1.0f, 0.4f)) * 40.0f;
-  expect_true_normals(sphere, Dent{contact, 4.0f, 6.0f}, looking_at({20.0f, -130.0f, 60.0f}, {0, 0, 0}));
+  // Measured: mean 0.094, p99 1.363 degrees; in the dent 0.284, 1.427 (the sphere's facets: the
+  // interpolated reference normals and the per-fragment ones part at the flat triangles' edges).
+  expect_true_normals(sphere, Dent{contact, 4.0f, 6.0f}, looking_at({20.0f, -130.0f, 60.0f}, {0, 0, 0}),
+                      {0.3f, 4.0f}, {0.9f, 4.3f});
 }
 
 struct Bumpy : testing::Test {

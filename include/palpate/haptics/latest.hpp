@@ -24,6 +24,7 @@ namespace palpate {
 template <class T>
 class Latest {
   static_assert(std::is_trivially_copyable_v<T>, "Latest<T> copies T bytewise");
+  static_assert(std::atomic<std::uint64_t>::is_always_lock_free, "Latest<T> must never take a lock");
 
  public:
   Latest() noexcept(std::is_nothrow_default_constructible_v<T>) : Latest(T{}) {}

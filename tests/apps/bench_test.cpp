@@ -1,0 +1,92 @@
+// Every `palpate bench` subcommand once at its smallest, so that a benchmark's code cannot rot unseen:
+// exit status, the JSON keys the reports promise, and values that make sense. (No speed is judged
+// here: the machines are shared; docs/benchmarks.md holds the figures.)
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "run_command.hpp"
+#include "test_paths.hpp"
+
+namespace palpate {
+namespace {
+
+const std::string cli = PALPATE_CLI;
+
+nlohmann::json run_bench(const std::string& arguments, const std::filesystem::path& json) {
+  const auto result = test::run_command(cli + " bench " + arguments + " --json " + json.string());
+  EXPECT_EQ(result.exit_status, 0) << result.both();
+  std::ifstream file(json);
+  return nlohmann::json::parse(file);
+}
+
+void expect_ordered(const nlohmann::json& p, const std::string& what) {
+  for (const char* key : {"p50", "p99", "p999", "max"})
+    ASSERT_TRUE(p.contains(key)) << what << " lacks " << key;
+  EXPECT_GE(p["p50"].get<double>(), 0.0) << what;
+  EXPECT_LE(p["p50"].get<double>(), p["p99"].get<double>()) << what;
+  EXPECT_LE(p["p99"].get<double>(), p["p999"].get<double>()) << what;
+  EXPECT_LE(p["p999"].get<double>(), p["max"].get<double>()) << what;
+}
+
+TEST(BenchCommand, HapticsAtItsSmallestReportsCleanCountsAndARate) {
+  const auto json = test::scratch_dir("bench_haptics") / "haptics.json";
+  const nlohmann::json report = run_bench("haptics --quick --cycles 1 --loop-seconds 0.5", json);
+  EXPECT_EQ(report["benchmark"], "haptics");
+  ASSERT_FALSE(report["rows"].empty());
+  int contact_rows = 0;
+  for (const auto& row : report["rows"]) {
+    const std::string what = row["scenario"].get<std::string>() + " " + row["mesh"].get<std::string>();
+    EXPECT_GT(row["triangles"].get<int>(), 0) << what;
+    EXPECT_GT(row["ticks"].get<int>(), 0) << what;
+    expect_ordered(row["tick_us"], what);
+    if (row["state"] != "contact") continue;
+    ++contact_rows;
+    const auto& checks = row["checks"];
+    for (const char* count :
+         {"pop_through_steps", "inward_force_steps", "proxy_inside_steps", "stuck_cycles"}) {
+      EXPECT_EQ(checks[count].get<int>(), 0) << what << " " << count;
+    }
+    EXPECT_GT(checks["max_force_n"].get<double>(), 0.5) << what << ": it pressed";
+  }
+  EXPECT_EQ(contact_rows, 5) << "brain, skin, brain+skin and two sphere-slides";
+  for (const auto& build : report["build"]) EXPECT_NEAR(build["bytes_per_triangle"].get<double>(), 60.0, 2.0);
+  ASSERT_EQ(report["loop"].size(), 2u) << "1 kHz idle and loaded";
+  for (const auto& loop : report["loop"]) {
+    EXPECT_NEAR(loop["achieved_hz"].get<double>(), 1000.0, 100.0);
+    expect_ordered(loop["period_error_us"], "period error");
+  }
+}
+
+TEST(BenchCommand, RenderAtItsSmallestComparesEveryVariant) {
+  const auto json = test::scratch_dir("bench_render") / "render.json";
+  const nlohmann::json report = run_bench("render --quick --seconds 0.3 --width 160 --height 128", json);
+  EXPECT_EQ(report["width"], 160);
+  ASSERT_EQ(report["rows"].size(), 12u) << "3 meshes x 4 variants";
+  for (const auto& row : report["rows"]) {
+    EXPECT_GT(row["fps"].get<double>(), 0.0);
+    EXPECT_GT(row["frames"].get<int>(), 0);
+    EXPECT_GT(row["cpu_ms"].get<double>(), 0.0);
+    EXPECT_TRUE(row.contains("gpu_ms"));
+  }
+}
+
+TEST(BenchCommand, Table1AtItsSmallestGivesThePapersRows) {
+  const auto dir = test::scratch_dir("bench_table1");
+  const nlohmann::json report =
+      run_bench("table1 --headless --seconds 0.5 --width 160 --height 128 --plot ''", dir / "table1.json");
+  ASSERT_EQ(report["rows"].size(), 3u);
+  const char* models[] = {"Brain", "Skin", "Skin + Brain"};
+  for (std::size_t i = 0; i < 3; ++i) {
+    const auto& row = report["rows"][i];
+    EXPECT_EQ(row["model"], models[i]);
+    EXPECT_GT(row["graphics_fps"].get<double>(), 0.0);
+    EXPECT_NEAR(row["haptics_hz"].get<double>(), 1000.0, 100.0);
+    EXPECT_GT(row["cpu_naive_fps"].get<double>(), 0.0);
+    EXPECT_GT(row["max_force_n"].get<double>(), 0.0) << "the probe was in contact";
+  }
+}
+
+}  // namespace
+}  // namespace palpate
