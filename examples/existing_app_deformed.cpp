@@ -11,7 +11,7 @@
 #include <optional>
 
 #include "palpate/core/shapes.hpp"
-#include "palpate/gl/deform_glsl.hpp"
+#include "palpate/gl/deform_uniforms.hpp"
 #include "palpate/gl/framebuffer.hpp"
 #include "palpate/gl/headless_context.hpp"
 #include "palpate/gl/png.hpp"
@@ -75,8 +75,7 @@ int main(int argc, char** argv) {
   glVertexArrayElementBuffer(vertex_array, buffers[2]);
   const palpate::gl::ShaderProgram program("existing app", palpate::gl::insert_deform_glsl(vertex_source, 1),
                                            palpate::gl::insert_deform_glsl(fragment_source, 1));
-  palpate::gl::DeformBlock dent_block;
-  dent_block.attach(program.id());
+  palpate::gl::DeformUniforms dents(program.id());
 
   const glm::mat4 view_projection =
       glm::perspective(glm::radians(40.0f), float(width) / float(height), 10.0f, 500.0f) *
@@ -90,9 +89,9 @@ int main(int argc, char** argv) {
     const palpate::Dent dent{
         glm::normalize(glm::vec3(0.2f, -1.0f, 0.35f)) * 50.0f,  // contact point facing the camera
         float(3.0 + 2.0 * std::cos(time_s)), 7.0f};             // depth 1..5 mm, sigma 7 mm
-    dent_block.update({&dent, 1});
-    dent_block.bind();
+    dents.set({&dent, 1});
     glUseProgram(program.id());
+    dents.apply();
     glUniformMatrix4fv(program.uniform("model"), 1, GL_FALSE, glm::value_ptr(model));
     glUniformMatrix4fv(program.uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(view_projection));
     glBindVertexArray(vertex_array);

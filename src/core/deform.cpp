@@ -55,10 +55,10 @@ void deform_mesh(const Mesh& mesh, const glm::mat4& transform, std::span<const D
   out.colors = mesh.colors;
   out.positions_mm.resize(mesh.positions_mm.size());
   out.normals.resize(mesh.positions_mm.size());
+  const std::vector<glm::vec3>& directions = mesh.directions.empty() ? mesh.normals : mesh.directions;
   for (std::size_t i = 0; i < mesh.positions_mm.size(); ++i) {
     const glm::vec3 v = glm::vec3(transform * glm::vec4(mesh.positions_mm[i], 1.0f));
-    const glm::vec3 n = glm::normalize(rotation * mesh.normals[i]);
-    out.positions_mm[i] = displaced_position(v, n, dents);
+    out.positions_mm[i] = displaced_position(v, glm::normalize(rotation * directions[i]), dents);
   }
   compute_vertex_normals(out);
 }

@@ -10,6 +10,7 @@
 #include "core/file_bytes.hpp"
 #include "core/gifti_reader.hpp"
 #include "core/mesh_writers.hpp"
+#include "palpate/core/displacement.hpp"
 #include "palpate/core/error.hpp"
 
 namespace palpate {
@@ -90,12 +91,13 @@ Scene load_model(const std::filesystem::path& file, const LoadParams& options) {
                 "has no triangle geometry: nothing drawn in it has faces (line and point sets and text are "
                 "skipped; a PROTO that is declared but never instantiated draws nothing)");
   }
-  for (const SceneObject& object : scene.objects) {
+  for (SceneObject& object : scene.objects) {
     try {
       validate_mesh(object.mesh, "object '" + object.name + "'");
     } catch (const Error& e) {
       throw Error(file, 0, e.detail());
     }
+    compute_displacement_directions(object.mesh);
   }
   return scene;
 }
@@ -109,6 +111,7 @@ Mesh load_mesh(const std::filesystem::path& file, const LoadParams& options) {
   if (scene.objects.size() == 1) return std::move(scene.objects.front().mesh);
   Mesh merged;
   for (const SceneObject& object : scene.objects) append_mesh(merged, object.mesh, object.material.color);
+  compute_displacement_directions(merged);  // shared across the parts too, where they touch
   return merged;
 }
 

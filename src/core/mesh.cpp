@@ -42,6 +42,12 @@ void append_mesh(Mesh& into, const Mesh& part, glm::vec3 fill_color) {
   if (colored && into.colors.empty()) into.colors.assign(into.positions_mm.size(), fill_color);
   into.positions_mm.insert(into.positions_mm.end(), part.positions_mm.begin(), part.positions_mm.end());
   into.normals.insert(into.normals.end(), part.normals.begin(), part.normals.end());
+  if (!into.directions.empty() || !part.directions.empty()) {  // the side without: its normals
+    if (into.directions.empty())
+      into.directions.assign(into.normals.begin(), into.normals.end() - part.normals.size());
+    const std::vector<glm::vec3>& more = part.directions.empty() ? part.normals : part.directions;
+    into.directions.insert(into.directions.end(), more.begin(), more.end());
+  }
   if (colored) {
     if (part.colors.empty()) {
       into.colors.insert(into.colors.end(), part.positions_mm.size(), fill_color);
@@ -61,6 +67,10 @@ void validate_mesh(const Mesh& mesh, const std::string& what) {
   }
   if (mesh.normals.size() != mesh.positions_mm.size()) {
     throw Error(what + ": " + std::to_string(mesh.normals.size()) + " normals for " +
+                std::to_string(mesh.positions_mm.size()) + " positions");
+  }
+  if (!mesh.directions.empty() && mesh.directions.size() != mesh.positions_mm.size()) {
+    throw Error(what + ": " + std::to_string(mesh.directions.size()) + " directions for " +
                 std::to_string(mesh.positions_mm.size()) + " positions");
   }
   if (!mesh.colors.empty() && mesh.colors.size() != mesh.positions_mm.size()) {

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <string>
-#include <utility>
 
 #include "palpate/core/error.hpp"
 
@@ -11,34 +10,35 @@ namespace {
 
 // The formulas of palpate/core/deform.cpp, written for SIMD shader cores: squared distances are
 // compared before anything is computed, and the normal is tilted without trigonometry (see below).
-constexpr std::string_view source = R"glsl(
-// palpate: GPU deformation after Luciano, Banerjee, Rizzi 2007. All positions in world mm.
-#define PALPATE_MAX_DENTS 8
-layout(std140) uniform PalpateDeform {
+// The dent data, one declaration per dialect; the functions read it by the same names in both.
+constexpr std::string_view uniform_block = R"glsl(layout(std140) uniform PalpateDeform {
   vec4 palpate_dent_center_depth[PALPATE_MAX_DENTS];  // xyz contact point c, w penetration p
   vec4 palpate_dent_shape[PALPATE_MAX_DENTS];         // x (4 sigma)^2, y 1/(2 sigma^2), z p/sigma^2, w sigma
   int palpate_dent_count;
 };
-// The loops below run over a compile-time number of slots so that the block is read at constant
-// offsets (a software rasterizer gathers lane by lane from a dynamic index). Define it, before this
-// source, to the most dents a shader must serve: each slot costs a full dent on SIMD cores without
-// branches, and dents past it are ignored.
-#ifndef PALPATE_DENT_SLOTS
-#define PALPATE_DENT_SLOTS PALPATE_MAX_DENTS
-#endif
+)glsl";
+constexpr std::string_view uniform_arrays =
+    R"glsl(uniform vec4 palpate_dent_center_depth[PALPATE_MAX_DENTS];  // xyz c, w p
+uniform vec4 palpate_dent_shape[PALPATE_MAX_DENTS];  // x (4 sigma)^2, y 1/(2 sigma^2), z p/sigma^2, w sigma
+uniform int palpate_dent_count;
+)glsl";
 
-// V' = V - N * sum G(d), G(d) = p exp(-d^2 / 2 sigma^2), d = |V - c|; a dent is skipped beyond 4 sigma.
-// world_normal must be of unit length: at d = 0 the surface moves by exactly p, to the tool tip.
-vec3 palpate_displace(vec3 world_position, vec3 world_normal) {
+// The functions, in the GLSL common to 1.10 and later (and ES 3.00). Their loops run over
+// PALPATE_DENT_SLOTS slots so that the data is read at constant offsets (a software rasterizer gathers
+// lane by lane from a dynamic index); dents past the slots are ignored.
+constexpr std::string_view functions =
+    R"glsl(// V' = V - D * sum G(d), G(d) = p exp(-d^2 / 2 sigma^2), d = |V - c|; a dent is skipped beyond 4 sigma.
+// direction must be of unit length: at d = 0 the surface moves by exactly p, to the tool tip.
+vec3 palpate_displace(vec3 position, vec3 direction) {
   float g = 0.0;
   for (int i = 0; i < PALPATE_DENT_SLOTS; ++i) {
     if (i >= palpate_dent_count) break;
     vec4 center_depth = palpate_dent_center_depth[i];
-    vec3 offset = world_position - center_depth.xyz;
+    vec3 offset = position - center_depth.xyz;
     float d2 = dot(offset, offset);
     g += d2 < palpate_dent_shape[i].x ? center_depth.w * exp(-d2 * palpate_dent_shape[i].y) : 0.0;
   }
-  return world_position - world_normal * g;
+  return position - direction * g;
 }
 
 // The fragment stage: from the undeformed world position and normal interpolated to this fragment,
@@ -53,14 +53,14 @@ vec3 palpate_displace(vec3 world_position, vec3 world_normal) {
 // d is measured from the undeformed position, as in palpate_displace. No tilt beyond 4 sigma, nor where
 // d = 0 or N is parallel to VC (|N x VC|^2 <= 1e-12 d^2 |N|^2, as the CPU twin). The normal comes out
 // of unit length.
-void palpate_deform_fragment(inout vec3 world_position, inout vec3 world_normal) {
-  vec3 n = world_normal;
+void palpate_deform_fragment(inout vec3 position, inout vec3 normal) {
+  vec3 n = normal;
   float g = 0.0;
   for (int i = 0; i < PALPATE_DENT_SLOTS; ++i) {
     if (i >= palpate_dent_count) break;
     vec4 center_depth = palpate_dent_center_depth[i];
     vec4 shape = palpate_dent_shape[i];
-    vec3 vc = center_depth.xyz - world_position;
+    vec3 vc = center_depth.xyz - position;
     float d2 = dot(vc, vc);
     float nn = dot(n, n);
     float n_vc = dot(n, vc);
@@ -71,36 +71,77 @@ void palpate_deform_fragment(inout vec3 world_position, inout vec3 world_normal)
     g += reaches ? center_depth.w * falloff : 0.0;
     n += (vc * nn - n * n_vc) * (reaches && cross2 > 1e-12 * d2 * nn ? step : 0.0);  // a select: step is
   }                                                                                 // not finite there
-  world_position -= world_normal * g;
-  world_normal = normalize(n);
+  position -= normal * g;
+  normal = normalize(n);
 }
 
 // The perturbed unit normal alone (see palpate_deform_fragment).
-vec3 palpate_perturb_normal(vec3 world_normal, vec3 rest_world_position) {
-  palpate_deform_fragment(rest_world_position, world_normal);
-  return world_normal;
+vec3 palpate_perturb_normal(vec3 normal, vec3 rest_position) {
+  palpate_deform_fragment(rest_position, normal);
+  return normal;
 }
 )glsl";
 
+bool is_es(std::string_view shader_source) noexcept {
+  const std::size_t at = shader_source.find("#version");
+  if (at == std::string_view::npos) return false;
+  const std::string_view line = shader_source.substr(at, shader_source.find('\n', at) - at);
+  return line.find(" es") != std::string_view::npos;
+}
+
 }  // namespace
 
-std::string_view deform_glsl() noexcept {
-  return source;
+GlslDialect dialect_of(std::string_view shader_source) noexcept {
+  const std::size_t at = shader_source.find("#version");
+  if (at == std::string_view::npos) return GlslDialect::uniform_arrays;  // GLSL 1.10
+  int version = 0;
+  for (std::size_t i = at + 8; i < shader_source.size() && shader_source[i] != '\n'; ++i) {
+    const char c = shader_source[i];
+    if (c >= '0' && c <= '9') version = version * 10 + (c - '0');
+    if (version > 0 && (c < '0' || c > '9')) break;
+  }
+  return version >= 140 || is_es(shader_source) ? GlslDialect::uniform_block : GlslDialect::uniform_arrays;
+}
+
+std::string deform_glsl(GlslDialect dialect, int dent_slots) {
+  std::string out = "// palpate: GPU deformation after Luciano, Banerjee, Rizzi 2007 (all in one space)\n";
+  out += "#define PALPATE_MAX_DENTS " + std::to_string(max_dents) + "\n";
+  out += "#define PALPATE_DENT_SLOTS " + std::to_string(std::clamp(dent_slots, 1, max_dents)) + "\n";
+  out.append(dialect == GlslDialect::uniform_block ? uniform_block : uniform_arrays);
+  out.append(functions);
+  return out;
 }
 
 std::string insert_deform_glsl(std::string_view shader_source, int dent_slots) {
+  return insert_deform_glsl(shader_source, dent_slots, dialect_of(shader_source));
+}
+
+std::string insert_deform_glsl(std::string_view shader_source, int dent_slots, GlslDialect dialect) {
+  // After #version and the #extension and #pragma lines that follow it (blank and // comment lines
+  // among them kept with them), where GLSL wants those directives: before any declaration.
   std::size_t insert_at = 0;
   const std::size_t version = shader_source.find("#version");
   if (version != std::string_view::npos) {
-    const std::size_t line_end = shader_source.find('\n', version);
-    insert_at = line_end == std::string_view::npos ? shader_source.size() : line_end + 1;
+    std::size_t line = shader_source.find('\n', version);
+    insert_at = line == std::string_view::npos ? shader_source.size() : line + 1;
+    while (insert_at < shader_source.size()) {
+      const std::size_t end = std::min(shader_source.find('\n', insert_at), shader_source.size());
+      std::string_view text = shader_source.substr(insert_at, end - insert_at);
+      text.remove_prefix(std::min(text.find_first_not_of(" \t\r"), text.size()));
+      const bool header = text.empty() || text.starts_with("#extension") || text.starts_with("#pragma") ||
+                          text.starts_with("//");
+      if (!header) break;
+      insert_at = end == shader_source.size() ? end : end + 1;
+    }
   }
   std::string out;
-  out.reserve(shader_source.size() + source.size() + 1);
+  const std::string glsl = deform_glsl(dialect, dent_slots);
+  out.reserve(shader_source.size() + glsl.size() + 64);
   out.append(shader_source.substr(0, insert_at));
-  if (insert_at > 0 && out.back() != '\n') out += '\n';
-  out += "#define PALPATE_DENT_SLOTS " + std::to_string(std::clamp(dent_slots, 1, max_dents)) + "\n";
-  out.append(source);
+  if (!out.empty() && out.back() != '\n') out += '\n';
+  // GLSL ES has no default float precision in the fragment stage: the snippet brings its own.
+  if (is_es(shader_source)) out += "precision highp float;\nprecision highp int;\n";
+  out += glsl;
   out.append(shader_source.substr(insert_at));
   return out;
 }
@@ -117,47 +158,6 @@ DeformBlockData make_deform_block_data(std::span<const Dent> dents) noexcept {
   }
   data.count = static_cast<std::int32_t>(count);
   return data;
-}
-
-DeformBlock::DeformBlock(GLuint binding) : binding_(binding) {
-  glCreateBuffers(1, &buffer_);
-  const DeformBlockData empty{};
-  glNamedBufferData(buffer_, sizeof(DeformBlockData), &empty, GL_DYNAMIC_DRAW);
-}
-
-DeformBlock::~DeformBlock() {
-  if (buffer_) glDeleteBuffers(1, &buffer_);
-}
-
-DeformBlock::DeformBlock(DeformBlock&& other) noexcept
-    : buffer_(std::exchange(other.buffer_, 0)), binding_(other.binding_) {}
-
-DeformBlock& DeformBlock::operator=(DeformBlock&& other) noexcept {
-  if (this != &other) {
-    if (buffer_) glDeleteBuffers(1, &buffer_);
-    buffer_ = std::exchange(other.buffer_, 0);
-    binding_ = other.binding_;
-  }
-  return *this;
-}
-
-void DeformBlock::attach(GLuint program) const {
-  const GLuint index = glGetUniformBlockIndex(program, deform_block_name);
-  if (index == GL_INVALID_INDEX) {
-    throw Error("program " + std::to_string(program) + " has no active uniform block " + deform_block_name +
-                ": include deform_glsl() and call palpate_displace or palpate_perturb_normal");
-  }
-  glUniformBlockBinding(program, index, binding_);
-}
-
-int DeformBlock::update(std::span<const Dent> dents) noexcept {
-  const DeformBlockData data = make_deform_block_data(dents);
-  glNamedBufferSubData(buffer_, 0, sizeof(DeformBlockData), &data);
-  return static_cast<int>(dents.size()) - data.count;
-}
-
-void DeformBlock::bind() const noexcept {
-  glBindBufferBase(GL_UNIFORM_BUFFER, binding_, buffer_);
 }
 
 }  // namespace palpate::gl

@@ -1,5 +1,7 @@
 #include "palpate/gl/framebuffer.hpp"
 
+#include <epoxy/gl.h>
+
 #include <string>
 
 #include "palpate/core/error.hpp"
@@ -80,7 +82,7 @@ void Framebuffer::bind() const noexcept {
   glViewport(0, 0, options_.width, options_.height);
 }
 
-GLuint Framebuffer::readable() const noexcept {
+std::uint32_t Framebuffer::readable() const noexcept {
   if (!resolve_framebuffer_) return framebuffer_;
   glBlitNamedFramebuffer(framebuffer_, resolve_framebuffer_, 0, 0, options_.width, options_.height, 0, 0,
                          options_.width, options_.height, GL_COLOR_BUFFER_BIT, GL_NEAREST);

@@ -78,12 +78,14 @@ std::string try_display(EGLDisplay display, const HeadlessContextParams& options
                                        EGL_CONTEXT_MINOR_VERSION,
                                        options.minor_version,
                                        EGL_CONTEXT_OPENGL_PROFILE_MASK,
-                                       EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+                                       options.compatibility ? EGL_CONTEXT_OPENGL_COMPATIBILITY_PROFILE_BIT
+                                                             : EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
                                        EGL_NONE};
   const EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, context_attributes);
   if (context == EGL_NO_CONTEXT) {
     return "eglCreateContext for OpenGL " + std::to_string(options.major_version) + "." +
-           std::to_string(options.minor_version) + " core refused (" + egl_error_name(eglGetError()) + ")";
+           std::to_string(options.minor_version) + (options.compatibility ? " compatibility" : " core") +
+           " refused (" + egl_error_name(eglGetError()) + ")";
   }
   if (!eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context)) {
     const std::string why = "eglMakeCurrent failed (" + egl_error_name(eglGetError()) + ")";
@@ -135,7 +137,8 @@ HeadlessContext::HeadlessContext(HeadlessContextParams options) : state_(std::ma
   }
   if (state_->context == EGL_NO_CONTEXT) {
     std::string message = "cannot create a headless OpenGL " + std::to_string(options.major_version) + "." +
-                          std::to_string(options.minor_version) + " core context over EGL; tried:";
+                          std::to_string(options.minor_version) +
+                          (options.compatibility ? " compatibility" : " core") + " context over EGL; tried:";
     for (const std::string& attempt : attempts) message += "\n  " + attempt;
     throw Error(message);
   }

@@ -10,6 +10,7 @@ namespace {
 constexpr std::string_view vertex_body = R"glsl(
 layout(location = 0) in vec3 position;
 layout(location = 1) in vec3 normal;
+layout(location = 3) in vec3 direction;  // where a dent moves the vertex (the normal, or the shared one)
 uniform mat4 model;          // rigid: object frame to world
 uniform mat3 normal_matrix;  // its rotation
 uniform mat4 view_projection;
@@ -32,7 +33,7 @@ void main() {
   v_color = color;
 #endif
 #ifdef PALPATE_DEFORM
-  world = palpate_displace(world, n);
+  world = palpate_displace(world, normalize(normal_matrix * direction));
 #endif
   gl_Position = view_projection * vec4(world, 1.0);
 }
@@ -97,12 +98,10 @@ void main() {
 
 std::string header(ShaderVariant variant) {
   std::string text = "#version 450 core\n";
-  if (variant.dent_slots > 0) {
-    text += "#define PALPATE_DEFORM\n#define PALPATE_DENT_SLOTS " + std::to_string(variant.dent_slots) + "\n";
-  }
+  if (variant.dent_slots > 0) text += "#define PALPATE_DEFORM\n";
   if (variant.normals) text += "#define PALPATE_NORMALS\n";
   if (variant.vertex_colors) text += "#define PALPATE_VERTEX_COLORS\n";
-  if (variant.dent_slots > 0) text += deform_glsl();
+  if (variant.dent_slots > 0) text += deform_glsl(GlslDialect::uniform_block, variant.dent_slots);
   return text;
 }
 

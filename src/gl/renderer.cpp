@@ -28,7 +28,7 @@ namespace palpate::gl {
 namespace {
 
 constexpr std::size_t triangles_per_cluster = 64;
-constexpr GLuint attribute_position = 0, attribute_normal = 1, attribute_color = 2;
+constexpr GLuint attribute_position = 0, attribute_normal = 1, attribute_color = 2, attribute_direction = 3;
 constexpr float occlusion_margin_mm = 0.5f;
 
 // One linked program and where its uniforms are.
@@ -115,7 +115,7 @@ struct DrawRanges {
 
 // A mesh in GPU buffers: interleaved position + normal, optional colours, indices.
 struct GpuMesh {
-  GLuint vertex_array = 0, vertex_buffer = 0, color_buffer = 0, index_buffer = 0;
+  GLuint vertex_array = 0, vertex_buffer = 0, color_buffer = 0, direction_buffer = 0, index_buffer = 0;
   GLsizei index_count = 0;
 
   explicit GpuMesh(const Mesh& mesh) {
@@ -135,6 +135,20 @@ struct GpuMesh {
     glEnableVertexArrayAttrib(vertex_array, attribute_normal);
     glVertexArrayAttribFormat(vertex_array, attribute_normal, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3));
     glVertexArrayAttribBinding(vertex_array, attribute_normal, 0);
+    // The displacement direction: the mesh's shared one where its vertices are split, else the normal.
+    glEnableVertexArrayAttrib(vertex_array, attribute_direction);
+    if (mesh.directions.empty()) {
+      glVertexArrayAttribFormat(vertex_array, attribute_direction, 3, GL_FLOAT, GL_FALSE, sizeof(glm::vec3));
+      glVertexArrayAttribBinding(vertex_array, attribute_direction, 0);
+    } else {
+      glCreateBuffers(1, &direction_buffer);
+      glNamedBufferStorage(direction_buffer,
+                           static_cast<GLsizeiptr>(mesh.directions.size() * sizeof(glm::vec3)),
+                           mesh.directions.data(), 0);
+      glVertexArrayVertexBuffer(vertex_array, 2, direction_buffer, 0, sizeof(glm::vec3));
+      glVertexArrayAttribFormat(vertex_array, attribute_direction, 3, GL_FLOAT, GL_FALSE, 0);
+      glVertexArrayAttribBinding(vertex_array, attribute_direction, 2);
+    }
     if (!mesh.colors.empty()) {
       glCreateBuffers(1, &color_buffer);
       glNamedBufferStorage(color_buffer, static_cast<GLsizeiptr>(mesh.colors.size() * sizeof(glm::vec3)),
@@ -151,8 +165,8 @@ struct GpuMesh {
     index_count = static_cast<GLsizei>(mesh.indices.size());
   }
   ~GpuMesh() {
-    const GLuint buffers[] = {vertex_buffer, color_buffer, index_buffer};
-    glDeleteBuffers(3, buffers);
+    const GLuint buffers[] = {vertex_buffer, color_buffer, direction_buffer, index_buffer};
+    glDeleteBuffers(4, buffers);
     glDeleteVertexArrays(1, &vertex_array);
   }
   GpuMesh(const GpuMesh&) = delete;
@@ -187,6 +201,25 @@ struct NaiveBuffers {
   }
   NaiveBuffers(const NaiveBuffers&) = delete;
   NaiveBuffers& operator=(const NaiveBuffers&) = delete;
+};
+
+// The dents of one object in a uniform buffer, laid out as deform_glsl's PalpateDeform block.
+struct DentBuffer {
+  GLuint id = 0;
+  DentBuffer() {
+    const DeformBlockData empty{};
+    glCreateBuffers(1, &id);
+    glNamedBufferData(id, sizeof(DeformBlockData), &empty, GL_DYNAMIC_DRAW);
+  }
+  ~DentBuffer() { glDeleteBuffers(1, &id); }
+  DentBuffer(const DentBuffer&) = delete;
+  DentBuffer& operator=(const DentBuffer&) = delete;
+
+  void update(std::span<const Dent> dents) const noexcept {
+    const DeformBlockData data = make_deform_block_data(dents);
+    glNamedBufferSubData(id, 0, sizeof(DeformBlockData), &data);
+    glBindBufferBase(GL_UNIFORM_BUFFER, Renderer::dent_binding, id);
+  }
 };
 
 // An occlusion query object.
@@ -235,7 +268,7 @@ struct RenderObject {
   std::unique_ptr<GpuMesh> gpu;
   std::unique_ptr<NaiveBuffers> naive;  // made on first CPU-naive draw
   Mesh deformed;                        // the CPU-naive path's scratch
-  DeformBlock block;
+  DentBuffer dent_buffer;
   std::array<Dent, max_dents> dents{};
   int dent_count = 0;
   DrawRanges reached, unreached;  // per-frame scratch
@@ -274,8 +307,10 @@ struct Renderer::State {
 Renderer::Renderer() : state_(std::make_unique<State>()) {
   state_->programs.reserve(program_count);
   for (std::size_t i = 0; i < program_count; ++i) state_->programs.emplace_back(program_variant(i));
-  const DeformBlock binding_only;
-  for (std::size_t i = 4; i < program_count; ++i) binding_only.attach(state_->programs[i].program.id());
+  for (std::size_t i = 4; i < program_count; ++i) {
+    const GLuint id = state_->programs[i].program.id();
+    glUniformBlockBinding(id, glGetUniformBlockIndex(id, deform_block_name), Renderer::dent_binding);
+  }
   state_->probe = std::make_unique<GpuMesh>(make_sphere(1.0f, 642));
   state_->proxy_program = std::make_unique<ProxyProgram>();
 }
@@ -491,7 +526,7 @@ int Renderer::State::add_dent(int object_index, const Dent& dent) noexcept {
 
 void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection, const DrawParams& options,
                              std::span<const Contact> probes, DrawResult& result) {
-  const GlStateGuard guard(DeformBlock::default_binding);
+  const GlStateGuard guard(Renderer::dent_binding);
   set_draw_state();
   const FrameUniforms frame(view, projection, options.lighting);
   for (const Program& p : programs) frame.set(p, options.lighting);
@@ -534,8 +569,7 @@ void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection,
       draw_all(*object.gpu);
     } else {
       const Program& deform = program(object.dent_count, options.shading, colors);
-      object.block.update(object_dents);
-      object.block.bind();
+      object.dent_buffer.update(object_dents);
       deform.set_object(object.transform, object.material.color);
       glBindVertexArray(object.gpu->vertex_array);
       if (options.skip_unreached) {

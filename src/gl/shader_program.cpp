@@ -1,5 +1,7 @@
 #include "palpate/gl/shader_program.hpp"
 
+#include <epoxy/gl.h>
+
 #include <utility>
 
 #include "palpate/core/error.hpp"
@@ -79,6 +81,10 @@ ShaderProgram& ShaderProgram::operator=(ShaderProgram&& other) noexcept {
     program_ = std::exchange(other.program_, 0);
   }
   return *this;
+}
+
+std::int32_t ShaderProgram::uniform(const char* uniform_name) const noexcept {
+  return glGetUniformLocation(program_, uniform_name);
 }
 
 }  // namespace palpate::gl

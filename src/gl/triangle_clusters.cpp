@@ -93,6 +93,7 @@ void order_vertices_by_first_use(Mesh& mesh) {
   reorder(mesh.positions_mm);
   reorder(mesh.normals);
   reorder(mesh.colors);
+  reorder(mesh.directions);
 }
 
 }  // namespace palpate::gl

@@ -1,5 +1,6 @@
 // `palpate demo` as `make demo` runs it, shortened: its files, its report, and frames that show the dent
 // where the contact is (compared with the same view rendered undeformed by the library).
+#include <epoxy/gl.h>
 #include <gtest/gtest.h>
 #include <stb/stb_image.h>
 

@@ -92,6 +92,14 @@ TEST_F(Malformed, VrmlCoordIndexOutOfRangeIsCaughtBeforeCoinUsesIt) {
   expect_load_error(file, "coordIndex[0] is 99999, but Coordinate.point has 1563 entries");
 }
 
+TEST_F(Malformed, VrmlCoordIndexJustPastTheEndIsAnError) {
+  const std::string text = read_bytes(data_ / "vrml/castle_teapot.wrl");
+  const auto file =
+      write_bytes(scratch_ / "teapot_one_past.wrl", replace_token_after(text, "coordIndex [", "1563"));
+  expect_load_error(file,
+                    "coordIndex[0] is 1563, but Coordinate.point has 1563 entries (valid: 0..1562 or -1)");
+}
+
 TEST_F(Malformed, VrmlNegativeIndexOtherThanTheSeparatorIsAnError) {
   const std::string text = read_bytes(data_ / "vrml/castle_teapot.wrl");
   const auto file =

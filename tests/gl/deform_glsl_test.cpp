@@ -1,5 +1,7 @@
 // The GLSL deformation against its CPU twin (palpate/core/deform.hpp), read back by transform feedback,
-// and the std140 block against the layout the driver reports.
+// in every dialect (GLSL 1.10 and 1.20 on a compatibility context, 1.40 to 4.50 and ES 3.00 on a core
+// one), fed by DeformUniforms; the std140 block against the layout the driver reports; the insertion
+// after #version, #extension and #pragma lines.
 #include "palpate/gl/deform_glsl.hpp"
 
 #include <gmock/gmock.h>
@@ -15,19 +17,21 @@
 #include "gl_test_context.hpp"
 #include "palpate/core/error.hpp"
 #include "palpate/core/shapes.hpp"
+#include "palpate/gl/deform_uniforms.hpp"
 #include "palpate/gl/framebuffer.hpp"
+#include "palpate/gl/headless_context.hpp"
 #include "palpate/gl/shader_program.hpp"
 
 namespace palpate::gl {
 namespace {
 
-// A vertex shader that feeds the snippet's two functions with each vertex and captures their results.
-constexpr const char* capture_vertex = R"glsl(#version 450 core
-layout(location = 0) in vec3 position;
-layout(location = 1) in vec3 normal;
-out vec3 displaced;
-out vec3 perturbed;
-out vec3 fragment_displaced;
+// A vertex shader that feeds the snippet's functions with each vertex and captures their results, in
+// the words of its GLSL version.
+std::string capture_vertex(const std::string& version) {
+  const bool old = version == "110" || version == "120";
+  const std::string in = old ? "attribute" : "in", out = old ? "varying" : "out";
+  return "#version " + version + "\n" + in + " vec3 position;\n" + in + " vec3 normal;\n" + out +
+         " vec3 displaced;\n" + out + " vec3 perturbed;\n" + out + " vec3 fragment_displaced;\n" + R"glsl(
 void main() {
   displaced = palpate_displace(position, normalize(normal));
   perturbed = palpate_perturb_normal(normal, position);
@@ -37,7 +41,14 @@ void main() {
   gl_Position = vec4(0.0);
 }
 )glsl";
-constexpr const char* empty_fragment = "#version 450 core\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n";
+}
+
+std::string empty_fragment(const std::string& version) {
+  if (version == "110" || version == "120")
+    return "#version " + version + "\nvoid main() { gl_FragColor = vec4(1.0); }\n";
+  const std::string precision = version.find("es") != std::string::npos ? "precision mediump float;\n" : "";
+  return "#version " + version + "\n" + precision + "out vec4 c;\nvoid main() { c = vec4(1.0); }\n";
+}
 
 GLuint compile(GLenum stage, const std::string& source) {
   const GLuint shader = glCreateShader(stage);
@@ -46,21 +57,36 @@ GLuint compile(GLenum stage, const std::string& source) {
   glCompileShader(shader);
   GLint ok = 0;
   glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  EXPECT_EQ(ok, GL_TRUE);
+  if (ok != GL_TRUE) {
+    char log[4096] = {};
+    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+    ADD_FAILURE() << "does not compile: " << log << "\n" << source;
+  }
   return shader;
+}
+
+// A compatibility-profile context, for GLSL 1.10 and 1.20 (a core profile starts at 1.40).
+gl::HeadlessContext& compatibility_context() {
+  static gl::HeadlessContext context({.major_version = 4, .minor_version = 5, .compatibility = true});
+  context.make_current();
+  return context;
 }
 
 struct Captured {
   std::vector<glm::vec3> displaced, perturbed, fragment_displaced;
 };
 
-// Runs `mesh`'s vertices (as points, rasterizer off) through the snippet with `dents` in the block.
-Captured capture(const Mesh& mesh, std::span<const Dent> dents, int dent_slots = max_dents) {
+// Runs `mesh`'s vertices (as points, rasterizer off) through the snippet in the GLSL `version`, with
+// `dents` fed by DeformUniforms, on the current context.
+Captured capture(const Mesh& mesh, std::span<const Dent> dents, int dent_slots = max_dents,
+                 const std::string& version = "450 core") {
   const GLuint program = glCreateProgram();
-  const GLuint vs = compile(GL_VERTEX_SHADER, insert_deform_glsl(capture_vertex, dent_slots));
-  const GLuint fs = compile(GL_FRAGMENT_SHADER, empty_fragment);
+  const GLuint vs = compile(GL_VERTEX_SHADER, insert_deform_glsl(capture_vertex(version), dent_slots));
+  const GLuint fs = compile(GL_FRAGMENT_SHADER, empty_fragment(version));
   glAttachShader(program, vs);
   glAttachShader(program, fs);
+  glBindAttribLocation(program, 0, "position");
+  glBindAttribLocation(program, 1, "normal");
   const char* varyings[] = {"displaced", "perturbed", "fragment_displaced"};
   glTransformFeedbackVaryings(program, 3, varyings, GL_INTERLEAVED_ATTRIBS);
   glLinkProgram(program);
@@ -68,10 +94,8 @@ Captured capture(const Mesh& mesh, std::span<const Dent> dents, int dent_slots =
   glGetProgramiv(program, GL_LINK_STATUS, &linked);
   EXPECT_EQ(linked, GL_TRUE);
 
-  DeformBlock block;
-  block.attach(program);
-  block.update(dents);
-  block.bind();
+  DeformUniforms uniforms(program);
+  uniforms.set(dents);
 
   const std::size_t n = mesh.vertex_count();
   GLuint vao = 0, buffers[3] = {};
@@ -90,6 +114,7 @@ Captured capture(const Mesh& mesh, std::span<const Dent> dents, int dent_slots =
   const Framebuffer target({1, 1});  // a surfaceless context has no default framebuffer to draw with
   target.bind();
   glUseProgram(program);
+  uniforms.apply();
   glBindVertexArray(vao);
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, buffers[2]);
   glEnable(GL_RASTERIZER_DISCARD);
@@ -180,8 +205,7 @@ TEST_F(DentedSphere, UpToMaxDentsSuperposeAndTheRestAreDropped) {
   for (int i = 0; i < max_dents + 2; ++i) {
     many.push_back({{-40.0f + 8.0f * float(i), -39.0f, 0.0f}, 1.0f + 0.25f * float(i), 4.0f});
   }
-  DeformBlock block;
-  EXPECT_EQ(block.update(many), 2);
+  EXPECT_EQ(make_deform_block_data(many).count, max_dents);
   const Captured gpu = capture(mesh, many);
   const std::span<const Dent> kept(many.data(), max_dents);
   for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
@@ -190,9 +214,45 @@ TEST_F(DentedSphere, UpToMaxDentsSuperposeAndTheRestAreDropped) {
   }
 }
 
+// Each GLSL dialect gives the CPU reference's positions and normals: the same text, fed by the block or
+// by the arrays.
+void expect_dialect_matches_the_cpu(const std::string& version, GlslDialect dialect) {
+  const std::string vertex = capture_vertex(version);
+  EXPECT_EQ(dialect_of(vertex), dialect) << version;
+  const Mesh mesh = make_bumpy_sphere(40.0f, 2.0f, 4000);
+  const Dent dents[] = {{{0.0f, -41.0f, 3.0f}, 4.0f, 5.0f}, {{6.0f, -40.0f, 8.0f}, 2.5f, 3.0f}};
+  const Captured gpu = capture(mesh, dents, 2, version);
+  float worst_position = 0.0f, worst_angle = 0.0f;
+  std::size_t moved = 0;
+  for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+    const glm::vec3 v = mesh.positions_mm[i], n = glm::normalize(mesh.normals[i]);
+    const glm::vec3 cpu = displaced_position(v, n, dents);
+    worst_position = std::max(worst_position, glm::distance(gpu.displaced[i], cpu));
+    worst_angle = std::max(worst_angle, angle_deg(gpu.perturbed[i], perturbed_normal(n, v, dents)));
+    moved += glm::distance(cpu, v) > 1e-3f;
+  }
+  EXPECT_GT(moved, 50u) << version;
+  EXPECT_LE(worst_position, 1e-4f) << version;
+  EXPECT_LE(worst_angle, 1e-3f) << version;
+}
+
+TEST(DeformGlslDialects, OldGlslTakesUniformArrays) {
+  compatibility_context();
+  for (const char* version : {"110", "120"})
+    expect_dialect_matches_the_cpu(version, GlslDialect::uniform_arrays);
+}
+
+TEST(DeformGlslDialects, NewerGlslAndEsTakeTheUniformBlock) {
+  test::gl_context();
+  for (const char* version : {"140", "150", "330 core", "450 core", "300 es"}) {
+    expect_dialect_matches_the_cpu(version, GlslDialect::uniform_block);
+  }
+}
+
 TEST(DeformBlockLayout, MatchesTheDriversStd140Offsets) {
   test::gl_context();
-  const ShaderProgram program("layout probe", insert_deform_glsl(capture_vertex), empty_fragment);
+  const ShaderProgram program("layout probe", insert_deform_glsl(capture_vertex("450 core")),
+                              empty_fragment("450 core"));
   const GLuint block = glGetUniformBlockIndex(program.id(), deform_block_name);
   ASSERT_NE(block, GL_INVALID_INDEX);
   GLint size = 0;
@@ -219,21 +279,41 @@ TEST(DeformBlockData, HoldsTheDerivedTermsOfEachDent) {
   EXPECT_EQ(data.shape[1], glm::vec4(0.0f));       // unused slots reach nothing
 }
 
-TEST(InsertDeformGlsl, GoesRightAfterTheVersionLine) {
-  const std::string source = insert_deform_glsl("#version 450 core\nvoid main() {}\n");
-  EXPECT_THAT(source, testing::StartsWith("#version 450 core\n"));
-  EXPECT_LT(source.find("PalpateDeform"), source.find("void main"));
+TEST(InsertDeformGlsl, GoesAfterTheVersionExtensionAndPragmaLines) {
+  const std::string source = insert_deform_glsl(
+      "#version 120\n#extension GL_EXT_gpu_shader4 : enable\n// a comment\n#pragma optimize(on)\n\nattribute "
+      "vec3 p;\nvoid main() {}\n");
+  EXPECT_THAT(source,
+              testing::StartsWith("#version 120\n#extension GL_EXT_gpu_shader4 : enable\n// a comment\n"
+                                  "#pragma optimize(on)\n\n// palpate"));
+  EXPECT_LT(source.find("uniform vec4 palpate_dent_center_depth"), source.find("attribute vec3 p"));
+  EXPECT_EQ(source.find("PalpateDeform"), std::string::npos) << "GLSL 1.20 has no uniform blocks";
   EXPECT_THAT(source, testing::HasSubstr("#define PALPATE_DENT_SLOTS 8\n"));
-  EXPECT_THAT(insert_deform_glsl("void main() {}", 2), testing::StartsWith("#define PALPATE_DENT_SLOTS 2\n"));
+  const std::string core = insert_deform_glsl("#version 330 core\nvoid main() {}\n", 2);
+  EXPECT_THAT(core, testing::HasSubstr("layout(std140) uniform PalpateDeform"));
+  EXPECT_THAT(core, testing::HasSubstr("#define PALPATE_DENT_SLOTS 2\n"));
+  EXPECT_THAT(insert_deform_glsl("void main() {}", 2), testing::StartsWith("// palpate"));
+  EXPECT_THAT(insert_deform_glsl("#version 300 es\nvoid main() {}\n"),
+              testing::StartsWith("#version 300 es\nprecision highp float;\n"));
 }
 
-TEST(DeformBlock, AttachToAProgramWithoutTheBlockIsAClearError) {
+TEST(DeformUniforms, AProgramWithoutTheSnippetOrThatDidNotLinkIsAClearError) {
   test::gl_context();
-  const ShaderProgram program(
-      "no deformation here", "#version 450 core\nvoid main() { gl_Position = vec4(0.0); }\n", empty_fragment);
-  const DeformBlock block;
-  EXPECT_THAT([&] { block.attach(program.id()); },
-              testing::ThrowsMessage<Error>(testing::HasSubstr("no active uniform block PalpateDeform")));
+  const ShaderProgram program("no deformation here",
+                              "#version 450 core\nvoid main() { gl_Position = vec4(0.0); }\n",
+                              empty_fragment("450 core"));
+  EXPECT_THAT(
+      [&] { DeformUniforms uniforms(program.id()); },
+      testing::ThrowsMessage<Error>(testing::HasSubstr("has neither the uniform block PalpateDeform")));
+  // A program whose link failed (its vertex stage calls a function nobody defines).
+  const GLuint broken = glCreateProgram();
+  const GLuint vs = compile(GL_VERTEX_SHADER, "#version 450 core\nvoid f();\nvoid main() { f(); }\n");
+  glAttachShader(broken, vs);
+  glLinkProgram(broken);
+  EXPECT_THAT([&] { DeformUniforms uniforms(broken); },
+              testing::ThrowsMessage<Error>(testing::HasSubstr("did not link")));
+  glDeleteShader(vs);
+  glDeleteProgram(broken);
 }
 
 }  // namespace

@@ -1,5 +1,8 @@
 #pragma once
-// One headless OpenGL 4.5 context (llvmpipe here) shared by the tests of this executable.
+// One headless OpenGL 4.5 context (llvmpipe here) shared by the tests of this executable; the tests
+// call OpenGL through libepoxy.
+#include <epoxy/gl.h>
+
 #include "palpate/gl/headless_context.hpp"
 
 namespace palpate::test {

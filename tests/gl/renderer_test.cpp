@@ -409,7 +409,7 @@ TEST(RendererState, LeavesTheHostsGlStateAsItFoundItAndIgnoresIt) {
   glBindBuffer(GL_ARRAY_BUFFER, buffers[0]);
   glBindBuffer(GL_UNIFORM_BUFFER, buffers[1]);
   glBufferData(GL_UNIFORM_BUFFER, 1024, nullptr, GL_STATIC_DRAW);
-  glBindBufferRange(GL_UNIFORM_BUFFER, DeformBlock::default_binding, buffers[1], 256, 512);
+  glBindBufferRange(GL_UNIFORM_BUFFER, Renderer::dent_binding, buffers[1], 256, 512);
   glBindBuffer(GL_UNIFORM_BUFFER, buffers[2]);
   glActiveTexture(GL_TEXTURE3);
   glBindTexture(GL_TEXTURE_2D, texture);

@@ -56,6 +56,16 @@ TEST(SpringDamper, ClampsTheMagnitudeKeepingTheDirection) {
   EXPECT_NEAR(glm::dot(glm::normalize(f.force_n), n), 1.0f, 1e-6f);
 }
 
+TEST(SpringDamper, ClampsAForceJustOverTheLimit) {
+  // 5 mm at 0.5 N/mm: 2.5 N against a 2 N device; 3 mm: 1.5 N, under it.
+  const ForceResult f = spring_damper(pressed(5.0f), glm::vec3(0.0f), material, 2.0f);
+  EXPECT_TRUE(f.clamped);
+  EXPECT_NEAR(glm::length(f.force_n), 2.0f, 1e-5f);
+  const ForceResult under = spring_damper(pressed(3.0f), glm::vec3(0.0f), material, 2.0f);
+  EXPECT_FALSE(under.clamped);
+  EXPECT_NEAR(glm::length(under.force_n), 1.5f, 1e-5f);
+}
+
 TEST(SpringDamper, NoContactNoForce) {
   const ForceResult f = spring_damper(Contact{}, {5.0f, 5.0f, 5.0f}, material, 10.0f);
   EXPECT_EQ(f.force_n, glm::vec3(0.0f));

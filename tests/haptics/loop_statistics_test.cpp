@@ -149,6 +149,31 @@ TEST(LoopStatisticsTest, ScheduleAndFiguresOnAFakeClock) {
   EXPECT_FALSE(last.in_contact());
 }
 
+TEST(LoopStatisticsTest, EveryMissedDeadlineIsCounted) {
+  const FarCube cube;
+  FakeClock clock;
+  // Ticks 1, 3 and 4 overrun their 1 ms periods.
+  CostlyDevice device(clock, {100 * us, 1500 * us, 100 * us, 1200 * us, 1100 * us, 100 * us});
+  HapticLoop loop(device, cube.scene, cube.bvh, {}, &clock);
+  loop.run_ticks(6);
+  EXPECT_EQ(loop.statistics().missed_deadlines, 3u);
+}
+
+// A late tick makes one period long and the next short: both are off the target by the same amount.
+TEST(LoopStatisticsTest, PeriodErrorIsTheDistanceFromTheTargetEitherWay) {
+  const FarCube cube;
+  FakeClock clock;
+  clock.late_wakes_ = {0, 300 * us, 0, 300 * us, 0, 0};
+  CostlyDevice device(clock, {50 * us});
+  HapticLoop loop(device, cube.scene, cube.bvh, {}, &clock);
+  loop.run_ticks(6);
+  // Starts (ms): 1, 2.3, 3, 4.3, 5, 6: periods 1300, 700, 1300, 700, 1000; errors 300 x4 and 0.
+  const LoopStatistics stats = loop.statistics();
+  EXPECT_DOUBLE_EQ(stats.period_us.p50, 1000.0);
+  EXPECT_DOUBLE_EQ(stats.period_error_us.p50, 300.0);  // nearest rank 3 of 0, 300, 300, 300, 300
+  EXPECT_DOUBLE_EQ(stats.period_error_us.max, 300.0);
+}
+
 TEST(LoopStatisticsTest, LateWakeUpsShowInThePeriodNotAsMisses) {
   const FarCube cube;
   FakeClock clock;

@@ -56,13 +56,15 @@ TEST(SphereSlide, MillionTriangles) {
 }
 
 // The surface-following press-slides of `palpate bench haptics` on the folded phantom brain: the tip
-// dips into sulci and climbs over gyri, and the proxy keeps up.
+// dips into sulci and climbs over gyri, and the proxy keeps up. These 50 cycles cross saddle vertices
+// where three triangles' planes used to wedge the proxy (without stepping onto a nearer face it
+// touches, the proxy sticks in one of cycles 41 to 50).
 TEST(SurfacePressSlide, PhantomBrainGyriAndSulci) {
   Scene scene = testing::scene_of("brain", make_brain_phantom());
   const testing::MeshOracle oracle(scene);
   const Bvh bvh = Bvh::build(scene);
-  const int cycles = reduced ? 3 : 10;
-  const auto cycles_run = testing::surface_press_slides(scene, 0, oracle, {.cycles = cycles, .seed = 3});
+  const int cycles = reduced ? 5 : 50;
+  const auto cycles_run = testing::surface_press_slides(scene, 0, oracle, {.cycles = cycles, .seed = 1});
   const testing::ScenarioResult result = testing::run_scenario(scene, bvh, cycles_run, 1e3f, &oracle);
   expect_clean(*result.counts, cycles, "phantom brain");
 }

@@ -44,7 +44,8 @@ glm::vec3 displaced_position(glm::vec3 v, glm::vec3 n, std::span<const Dent> den
 glm::vec3 perturbed_normal(glm::vec3 n0, glm::vec3 v, std::span<const Dent> dents) noexcept;
 
 // CPU reference of a whole object: its mesh taken to world by the rigid `transform`, displaced by the
-// dents, with the exact area-weighted vertex normals of the deformed triangles. Allocates `out`.
+// dents along its directions (Mesh::directions, or its normals), with the exact area-weighted vertex
+// normals of the deformed triangles. Allocates `out`.
 void deform_mesh(const Mesh& mesh, const glm::mat4& transform, std::span<const Dent> dents, Mesh& out);
 
 // The dent a contact makes on an object of spread `sigma_mm`.

@@ -14,7 +14,9 @@
 //
 // Vertices: each shape's triangles are welded into one vertex per distinct position, normal and
 // colour (VRML, Inventor), so a closed surface stays closed except along creases and colour seams;
-// for OBJ and STL, whose importer splits positions, one vertex per distinct position.
+// for OBJ and STL, whose importer splits positions, one vertex per distinct position. Where vertices
+// still share a position, Mesh::directions gives them one direction to move along under a dent
+// (compute_displacement_directions), so the surface does not crack.
 //
 // Threads: loading and saving may be called from several threads. Coin3D and giftiio keep global
 // state, so their part of the work runs under one process-wide lock each; while palpate holds the

@@ -10,8 +10,11 @@ namespace palpate {
 
 struct Mesh {
   std::vector<glm::vec3> positions_mm;
-  std::vector<glm::vec3> normals;      // unit, one per position (outward)
-  std::vector<glm::vec3> colors;       // linear RGB in [0,1], one per position, or empty
+  std::vector<glm::vec3> normals;  // unit, one per position (outward)
+  std::vector<glm::vec3> colors;   // linear RGB in [0,1], one per position, or empty
+  // Where a dent moves each vertex: unit, one per position, shared by all vertices at one place (see
+  // palpate/core/displacement.hpp); empty where no two vertices share a position: then the normals.
+  std::vector<glm::vec3> directions;
   std::vector<std::uint32_t> indices;  // three per triangle, counter-clockwise seen from outside
 
   std::size_t vertex_count() const noexcept { return positions_mm.size(); }

@@ -1,25 +1,24 @@
 #pragma once
-// The paper's deformation as GLSL that an OpenGL application includes in its own shaders, and the
-// std140 uniform block that feeds it. palpate's own Renderer uses the same source.
+// The paper's deformation as GLSL that an OpenGL application puts into its own shaders, in the dialect
+// of the shader's own #version, and the dent data those shaders read. Needs no OpenGL header, loader
+// or context: it is text and numbers (DeformUniforms, in deform_uniforms.hpp, feeds them to a program).
 //
-// One space for everything: world millimetres, in both shader stages (the paper used eye space; world
-// space lets the dents stay put while the camera moves, and needs no view matrix in the block).
+// Any one space serves, as long as the positions, the directions and the dents are all in it: world
+// millimetres (palpate's renderer), eye space in metres (a GL 2.1 program with gl_ModelViewMatrix and
+// no model matrix), ... dent_in_space (palpate/core/deform.hpp) takes a Dent from world millimetres
+// into such a space.
 //
-// In the application's vertex shader (world_normal of unit length):
-//     vec3 rest = (model * vec4(position, 1.0)).xyz;           // undeformed world position
-//     vec3 world = palpate_displace(rest, world_normal);       // V' = V - N * sum G(|V - c|)
-//     pass `rest` and `world_normal` to the fragment stage
+// In the application's vertex shader:
+//     vec3 rest = ...;                                        // the undeformed position, in that space
+//     vec3 moved = palpate_displace(rest, direction);         // V' = V - D * sum G(|V - c|)
+//     pass `rest` and the normal to the fragment stage
+// `direction` is the unit direction a dent moves the vertex: the mesh's normal where its vertices are
+// not split, else one direction shared by every corner at a position (Mesh::directions, so that split
+// corners move together and the surface does not crack).
 // In its fragment shader:
-//     vec3 n = palpate_perturb_normal(world_normal_in, rest_in);  // unit, tilted into each dent
-// or, to light the displaced position without passing it as a third vector,
-//     vec3 p = rest_in, n = world_normal_in;
-//     palpate_deform_fragment(p, n);                           // p displaced, n perturbed
-// On the host, once: `DeformBlock block; block.attach(program);` and each frame:
-//     `block.update(dents); block.bind();` before drawing. The CPU twins of both functions are
-// palpate::displaced_position and palpate::perturbed_normal (palpate/core/deform.hpp); tests hold them
-// together.
-#include <epoxy/gl.h>
-
+//     vec3 n = palpate_perturb_normal(normal_in, rest_in);   // unit, tilted into each dent
+// The CPU twins are palpate::displaced_position and palpate::perturbed_normal (palpate/core/deform.hpp);
+// tests hold them together.
 #include <cstddef>
 #include <cstdint>
 #include <glm/vec4.hpp>
@@ -31,28 +30,39 @@
 
 namespace palpate::gl {
 
-// The GLSL source (GLSL 3.30 or later, no #version line): the uniform block `PalpateDeform`,
-// `vec3 palpate_displace(vec3 world_position, vec3 world_normal)` for the vertex stage and
-// `vec3 palpate_perturb_normal(vec3 world_normal, vec3 rest_world_position)` and
-// `void palpate_deform_fragment(inout vec3 world_position, inout vec3 world_normal)` for the fragment stage.
-// Both functions compile in either stage. They loop over PALPATE_DENT_SLOTS slots (default
-// max_dents), which a shader may #define before this source (insert_deform_glsl does).
-std::string_view deform_glsl() noexcept;
+// How the dents reach the shader.
+enum class GlslDialect {
+  uniform_arrays,  // GLSL 1.10 to 1.30 (OpenGL 2.x, 3.0): plain uniform arrays, set with glUniform4fv
+  uniform_block,   // GLSL 1.40 and later, and GLSL ES 3.00: a std140 uniform block, from a buffer
+};
 
-// `shader_source` with deform_glsl() inserted right after its `#version` line (or in front, when it
-// has none), serving up to `dent_slots` dents (1..max_dents, PALPATE_DENT_SLOTS). The block is read
-// at constant offsets, slot by slot; on a GPU a slot past the current count costs a uniform branch,
-// on a software rasterizer (llvmpipe) a whole dent, so ask for no more slots than needed. Allocates.
+// The dialect a shader's `#version` line asks for: up to 130 (and no #version at all, which means
+// 110) the arrays, from 140 and for "300 es" the block.
+GlslDialect dialect_of(std::string_view shader_source) noexcept;
+
+// The GLSL source, without a #version line, serving up to `dent_slots` dents (1..max_dents): the dent
+// data (`PalpateDeform` block or `palpate_dent_*` arrays), `vec3 palpate_displace(vec3 position,
+// vec3 direction)`, `vec3 palpate_perturb_normal(vec3 normal, vec3 rest_position)` and
+// `void palpate_deform_fragment(inout vec3 position, inout vec3 normal)`; each compiles in either
+// stage. The loops run over a compile-time number of slots (the data is read at constant offsets):
+// on a GPU an unused slot costs a uniform branch, on a software rasterizer (llvmpipe) a whole dent, so
+// ask for no more than needed. Allocates.
+std::string deform_glsl(GlslDialect dialect, int dent_slots = max_dents);
+
+// `shader_source` with deform_glsl() inserted after its `#version` line and any `#extension` and
+// `#pragma` lines that follow it (where the GLSL rules want them), in the dialect of its #version.
+// Allocates.
 std::string insert_deform_glsl(std::string_view shader_source, int dent_slots = max_dents);
+std::string insert_deform_glsl(std::string_view shader_source, int dent_slots, GlslDialect dialect);
 
 inline constexpr const char* deform_block_name = "PalpateDeform";
 
-// The std140 layout of `PalpateDeform`, member for member. Derived per-dent values are computed
-// once on the CPU so that each vertex and fragment pays only for what varies.
+// The dent data, member for member as the std140 block lays it out (and as the arrays hold it).
+// Derived per-dent values are computed once on the CPU so that each vertex and fragment pays only for
+// what varies.
 struct DeformBlockData {
-  glm::vec4 center_depth[max_dents];  // xyz contact point c (world mm), w penetration p (mm)
-  glm::vec4 shape[max_dents];         // x (cutoff 4 sigma)^2 (mm^2), y 1/(2 sigma^2) (1/mm^2),
-                                      // z p / sigma^2 (1/mm, the slope factor), w sigma (mm)
+  glm::vec4 center_depth[max_dents];  // xyz contact point c, w penetration p (lengths in the space's unit)
+  glm::vec4 shape[max_dents];         // x (cutoff 4 sigma)^2, y 1/(2 sigma^2), z p / sigma^2, w sigma
   std::int32_t count;                 // dents in use, 0..max_dents
   std::int32_t padding[3];
 };
@@ -61,37 +71,7 @@ static_assert(offsetof(DeformBlockData, shape) == 16 * max_dents);
 static_assert(offsetof(DeformBlockData, count) == 32 * max_dents);
 static_assert(sizeof(DeformBlockData) == 32 * max_dents + 16);
 
-// Fills the block from `dents`: the first max_dents are taken, the rest dropped.
+// Fills the data from `dents`: the first max_dents are taken, the rest dropped. No allocation.
 DeformBlockData make_deform_block_data(std::span<const Dent> dents) noexcept;
-
-// Owns the uniform buffer of one `PalpateDeform` block (one per object when objects have different
-// dents). Needs a current OpenGL context for all of its life.
-class DeformBlock {
- public:
-  static constexpr GLuint default_binding = 3;
-
-  explicit DeformBlock(GLuint binding = default_binding);
-  ~DeformBlock();
-  DeformBlock(DeformBlock&& other) noexcept;
-  DeformBlock& operator=(DeformBlock&& other) noexcept;
-  DeformBlock(const DeformBlock&) = delete;
-  DeformBlock& operator=(const DeformBlock&) = delete;
-
-  // Points `program`'s PalpateDeform block at this block's binding point. Throws palpate::Error when
-  // the program has no such block (e.g. the snippet was not included, or no function of it is used).
-  void attach(GLuint program) const;
-  // Uploads the dents (at most max_dents; returns how many were dropped). No allocation.
-  int update(std::span<const Dent> dents) noexcept;
-  // glBindBufferBase(GL_UNIFORM_BUFFER, binding, buffer): also sets the generic GL_UNIFORM_BUFFER
-  // binding, as glBindBufferBase does.
-  void bind() const noexcept;
-
-  GLuint buffer() const noexcept { return buffer_; }
-  GLuint binding() const noexcept { return binding_; }
-
- private:
-  GLuint buffer_ = 0;
-  GLuint binding_ = default_binding;
-};
 
 }  // namespace palpate::gl

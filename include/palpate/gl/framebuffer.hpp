@@ -2,8 +2,6 @@
 // An offscreen render target: a colour and a depth attachment, optionally multisampled (then resolved
 // into a single-sample copy for reading). Needs a current OpenGL 4.5 context; throws palpate::Error
 // when the driver refuses the combination.
-#include <epoxy/gl.h>
-
 #include <cstdint>
 #include <vector>
 
@@ -31,7 +29,7 @@ class Framebuffer {
 
   // Binds it as GL_FRAMEBUFFER and sets the viewport to cover it (the caller's state is not saved).
   void bind() const noexcept;
-  GLuint id() const noexcept { return framebuffer_; }
+  std::uint32_t id() const noexcept { return framebuffer_; }
   int width() const noexcept { return options_.width; }
   int height() const noexcept { return options_.height; }
   const FramebufferParams& options() const noexcept { return options_; }
@@ -42,11 +40,11 @@ class Framebuffer {
   std::vector<float> read_rgba_float() const;
 
  private:
-  GLuint readable() const noexcept;
+  std::uint32_t readable() const noexcept;
 
   FramebufferParams options_;
-  GLuint framebuffer_ = 0, color_ = 0, depth_ = 0;
-  GLuint resolve_framebuffer_ = 0, resolve_color_ = 0;  // only when multisampled
+  std::uint32_t framebuffer_ = 0, color_ = 0, depth_ = 0;
+  std::uint32_t resolve_framebuffer_ = 0, resolve_color_ = 0;  // only when multisampled
 };
 
 }  // namespace palpate::gl

@@ -10,8 +10,9 @@
 namespace palpate::gl {
 
 struct HeadlessContextParams {
-  int major_version = 4;  // OpenGL core profile version asked for
+  int major_version = 4;  // OpenGL version asked for
   int minor_version = 5;
+  bool compatibility = false;  // the compatibility profile (GLSL 1.10/1.20, fixed-function state), not core
 };
 
 class HeadlessContext {

@@ -14,13 +14,14 @@
 // the same pixels (the plain and deforming shaders differ only by the deformation). The GL state it
 // sets for itself: depth test LESS with writes, back faces culled (counter-clockwise front), no blending,
 // filled polygons, every colour channel written; state changed: program, vertex array, GL_ARRAY_BUFFER,
-// GL_UNIFORM_BUFFER and its binding DeformBlock::default_binding, those switches, the colour mask (all
+// GL_UNIFORM_BUFFER and its binding dent_binding, those switches, the colour mask (all
 // restored). With occlusion culling on, draw() must not be called inside the caller's own
 // GL_ANY_SAMPLES_PASSED_CONSERVATIVE query or conditional rendering.
 //
 // Needs a current OpenGL 4.5 core context for all of its life (construction compiles its programs and
 // throws palpate::Error with the driver's log if one fails). Not thread-safe: use it on the thread of
 // its context.
+#include <cstdint>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <memory>
@@ -96,6 +97,9 @@ struct DrawResult {
 
 class Renderer {
  public:
+  // The indexed GL_UNIFORM_BUFFER binding point the renderer binds its dents to (restored after draw).
+  static constexpr std::uint32_t dent_binding = 3;
+
   Renderer();
   ~Renderer();
   Renderer(const Renderer&) = delete;

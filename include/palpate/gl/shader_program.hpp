@@ -1,8 +1,7 @@
 #pragma once
 // A linked GLSL program. Compile and link errors throw palpate::Error with the driver's log and the
-// program's name. Needs a current OpenGL 4.5 context.
-#include <epoxy/gl.h>
-
+// program's name. Needs a current OpenGL context (2.0 or later). GL names are plain integers here.
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -18,16 +17,14 @@ class ShaderProgram {
   ShaderProgram(const ShaderProgram&) = delete;
   ShaderProgram& operator=(const ShaderProgram&) = delete;
 
-  GLuint id() const noexcept { return program_; }
+  std::uint32_t id() const noexcept { return program_; }
   const std::string& name() const noexcept { return name_; }
   // -1 where the program has no such active uniform.
-  GLint uniform(const char* uniform_name) const noexcept {
-    return glGetUniformLocation(program_, uniform_name);
-  }
+  std::int32_t uniform(const char* uniform_name) const noexcept;
 
  private:
   std::string name_;
-  GLuint program_ = 0;
+  std::uint32_t program_ = 0;
 };
 
 }  // namespace palpate::gl
