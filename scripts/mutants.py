@@ -6,7 +6,7 @@ the tests that should catch it; tab-separated, '#' for comments), copies the tra
 build/mutants/tree once, builds it there, then applies each mutant alone, rebuilds incrementally, runs
 its tests and restores the file. A mutant is killed when a test fails; it survived when all pass.
 Exits 1 when one survived (or a mutant no longer applies: its text must occur exactly once).
-Usage: scripts/mutants.py [NAME-FILTER]   (only mutants whose file or text contains the filter)
+Usage: scripts/mutants.py [FILTER...]   (only the mutants whose file or text contains one of the filters)
 """
 import os
 import shutil
@@ -54,9 +54,9 @@ def run(command, **kwargs):
 
 
 def main():
-    only = sys.argv[1] if len(sys.argv) > 1 else ""
+    filters = sys.argv[1:] or [""]
     mutants = [m for m in read_mutants(os.path.join(ROOT, "tests", "mutants.tsv"))
-               if only in m["file"] or only in m["find"]]
+               if any(f in m["file"] or f in m["find"] for f in filters)]
     os.makedirs(TREE, exist_ok=True)
     copy_tree()
     if not os.path.exists(os.path.join(BUILD, "build.ninja")):

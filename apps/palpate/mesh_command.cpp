@@ -7,6 +7,7 @@
 
 #include "commands.hpp"
 #include "format.hpp"
+#include "palpate/core/displacement.hpp"
 #include "palpate/core/load.hpp"
 #include "palpate/core/mesh_topology.hpp"
 #include "palpate/core/phantom.hpp"
@@ -40,10 +41,13 @@ int mesh_info(const std::vector<std::string>& files) {
         append_mesh(merged, world);
       }
       const Bounds box = bounds(merged);
-      const MeshTopology topo = analyze_topology(merged);
+      // The surface's topology, by position: shading splits (flat faces, creases) are not holes.
+      const Mesh surface = weld_by_position(merged, default_weld_tolerance_mm(merged));
+      const MeshTopology topo = analyze_topology(surface);
       std::printf("%s\n", file.c_str());
       std::printf("  objects     %zu\n", model.objects.size());
-      std::printf("  vertices    %s\n", with_thousands(merged.vertex_count()).c_str());
+      std::printf("  vertices    %s (%s positions)\n", with_thousands(merged.vertex_count()).c_str(),
+                  with_thousands(surface.vertex_count()).c_str());
       std::printf("  triangles   %s\n", with_thousands(merged.triangle_count()).c_str());
       std::printf("  bounds      [%.2f, %.2f, %.2f] .. [%.2f, %.2f, %.2f] (size %.2f x %.2f x %.2f)\n",
                   box.min_mm.x, box.min_mm.y, box.min_mm.z, box.max_mm.x, box.max_mm.y, box.max_mm.z,
@@ -54,8 +58,9 @@ int mesh_info(const std::vector<std::string>& files) {
                   topo.manifold() ? "yes" : "no", topo.nonmanifold_edges, topo.degenerate_triangles);
       std::printf("  oriented    %s (%zu misoriented edges)\n", topo.oriented() ? "yes" : "no",
                   topo.misoriented_edges);
-      std::printf("  components  %zu, Euler characteristic %ld\n", topo.components,
-                  topo.euler_characteristic);
+      std::printf("  components  %zu, Euler characteristic %ld", topo.components, topo.euler_characteristic);
+      if (topo.closed() && topo.manifold() && topo.oriented()) std::printf(", genus %ld", topo.genus());
+      std::printf("\n");
       std::printf("  load time   %.1f ms\n", load_ms);
     } catch (const std::exception& e) {
       std::fprintf(stderr, "palpate: error: %s\n", e.what());

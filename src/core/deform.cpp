@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <glm/matrix.hpp>
 
 namespace palpate {
 
@@ -47,6 +48,12 @@ glm::vec3 perturbed_normal(glm::vec3 n0, glm::vec3 v, std::span<const Dent> dent
     n = n * cos_theta + glm::cross(axis, n) * sin_theta;
   }
   return n;
+}
+
+Dent dent_in_space(const Dent& dent, const glm::mat4& to_space) noexcept {
+  const float scale = std::cbrt(std::abs(glm::determinant(glm::mat3(to_space))));
+  return Dent{glm::vec3(to_space * glm::vec4(dent.center_mm, 1.0f)), dent.depth_mm * scale,
+              dent.sigma_mm * scale};
 }
 
 void deform_mesh(const Mesh& mesh, const glm::mat4& transform, std::span<const Dent> dents, Mesh& out) {

@@ -524,8 +524,39 @@ int Renderer::State::add_dent(int object_index, const Dent& dent) noexcept {
   return 0;
 }
 
+namespace {
+
+// What the host left bound that would keep a draw from showing (DrawResult's flags).
+void check_target(DrawResult& result) noexcept {
+  GLint viewport[4] = {};
+  glGetIntegerv(GL_VIEWPORT, viewport);
+  result.zero_viewport = viewport[2] <= 0 || viewport[3] <= 0;
+  GLint framebuffer = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &framebuffer);
+  result.incomplete_framebuffer =
+      glCheckNamedFramebufferStatus(GLuint(framebuffer), GL_DRAW_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE;
+  GLint depth_bits = 0;
+  if (framebuffer == 0) {
+    glGetNamedFramebufferAttachmentParameteriv(0, GL_DEPTH, GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE,
+                                               &depth_bits);
+  } else {
+    GLint type = GL_NONE;
+    glGetNamedFramebufferAttachmentParameteriv(GLuint(framebuffer), GL_DEPTH_ATTACHMENT,
+                                               GL_FRAMEBUFFER_ATTACHMENT_OBJECT_TYPE, &type);
+    if (type != GL_NONE) {
+      glGetNamedFramebufferAttachmentParameteriv(GLuint(framebuffer), GL_DEPTH_ATTACHMENT,
+                                                 GL_FRAMEBUFFER_ATTACHMENT_DEPTH_SIZE, &depth_bits);
+    }
+  }
+  result.no_depth_buffer = depth_bits == 0;
+}
+
+}  // namespace
+
 void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection, const DrawParams& options,
                              std::span<const Contact> probes, DrawResult& result) {
+  check_target(result);
+  if (result.drew_nothing()) return;
   const GlStateGuard guard(Renderer::dent_binding);
   set_draw_state();
   const FrameUniforms frame(view, projection, options.lighting);

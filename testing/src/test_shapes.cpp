@@ -76,4 +76,42 @@ Mesh make_comb(int teeth, float tooth_width_mm, float gap_mm, float tooth_height
   return mesh;
 }
 
+Mesh make_torus(float major_mm, float minor_mm, int segments, int sides) {
+  Mesh mesh;
+  const float two_pi = 6.28318530718f;
+  for (int i = 0; i < segments; ++i) {
+    const float u = two_pi * float(i) / float(segments);
+    for (int j = 0; j < sides; ++j) {
+      const float v = two_pi * float(j) / float(sides);
+      const glm::vec3 ring(std::cos(u), std::sin(u), 0.0f);
+      mesh.positions_mm.push_back(ring * (major_mm + minor_mm * std::cos(v)) +
+                                  glm::vec3(0, 0, minor_mm * std::sin(v)));
+    }
+  }
+  const auto at = [&](int i, int j) { return std::uint32_t((i % segments) * sides + (j % sides)); };
+  for (int i = 0; i < segments; ++i) {
+    for (int j = 0; j < sides; ++j) {
+      mesh.indices.insert(mesh.indices.end(), {at(i, j), at(i + 1, j), at(i + 1, j + 1)});
+      mesh.indices.insert(mesh.indices.end(), {at(i, j), at(i + 1, j + 1), at(i, j + 1)});
+    }
+  }
+  compute_vertex_normals(mesh);
+  return mesh;
+}
+
+Mesh split_flat(const Mesh& mesh) {
+  Mesh flat;
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const glm::vec3 a = mesh.positions_mm[mesh.indices[t]], b = mesh.positions_mm[mesh.indices[t + 1]],
+                    c = mesh.positions_mm[mesh.indices[t + 2]];
+    const glm::vec3 n = glm::normalize(glm::cross(b - a, c - a));
+    for (const glm::vec3& p : {a, b, c}) {
+      flat.indices.push_back(std::uint32_t(flat.positions_mm.size()));
+      flat.positions_mm.push_back(p);
+      flat.normals.push_back(n);
+    }
+  }
+  return flat;
+}
+
 }  // namespace palpate::testing

@@ -5,6 +5,7 @@
 
 #include "palpate/core/load.hpp"
 #include "palpate/core/mesh_topology.hpp"
+#include "palpate/testing/test_shapes.hpp"
 #include "run_command.hpp"
 #include "test_paths.hpp"
 
@@ -41,6 +42,21 @@ TEST(MeshCommand, ConvertKeepsTheGeometry) {
   EXPECT_EQ(back.vertex_count(), 2000u);
   EXPECT_EQ(back.triangle_count(), 3996u);
   EXPECT_TRUE(analyze_topology(back).closed());
+}
+
+// A flat-shaded torus (three vertices a face, as exporters write it) is one closed surface of genus 1,
+// not thousands of loose triangles.
+TEST(MeshCommand, InfoReportsTheTopologyOfTheSurfaceNotOfItsShadingSplits) {
+  const auto dir = test::scratch_dir("mesh_command_flat");
+  const Mesh flat = testing::split_flat(testing::make_torus(30.0f, 12.0f, 24, 12));
+  save_mesh(flat, dir / "flat_torus.ply");
+  const auto info = test::run_command(cli + " mesh info " + (dir / "flat_torus.ply").string());
+  ASSERT_EQ(info.exit_status, 0) << info.both();
+  EXPECT_NE(info.out.find(" (288 positions)"), std::string::npos)
+      << info.both();  // 24 x 12, of 1,728 corners
+  EXPECT_NE(info.out.find("closed      yes"), std::string::npos) << info.both();
+  EXPECT_NE(info.out.find("components  1, Euler characteristic 0, genus 1"), std::string::npos)
+      << info.both();
 }
 
 TEST(MeshCommand, InfoReadsTheExampleSceneFile) {

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
 #include <vector>
 
@@ -38,6 +39,31 @@ TEST(DisplacedPosition, SkipsBeyondTheCutoffAndSuperposes) {
   EXPECT_EQ(far, glm::vec3(8.01f, 0, 0));
   const glm::vec3 between = displaced_position({1.5f, 0, 0}, {0, 0, 1}, dents);
   EXPECT_NEAR(between.z, -(dent_gaussian(1.5f, 1.0f, 2.0f) + dent_gaussian(1.5f, 2.0f, 2.0f)), 1e-6f);
+}
+
+// A host that works in eye space and metres gets the same dent: map the world-millimetre answer into
+// its space, or map the dent and compute there.
+TEST(DentInSpace, GivesTheSameDeformationInTheHostsSpace) {
+  const glm::mat4 view = glm::lookAt(glm::vec3(40, -120, 60), glm::vec3(0, 0, 10), glm::vec3(0, 0, 1));
+  const glm::mat4 to_eye_metres = glm::scale(glm::mat4(1.0f), glm::vec3(1e-3f)) * view;
+  const Dent world{{3.0f, -1.0f, 20.0f}, 4.0f, 6.0f};
+  const Dent eye = dent_in_space(world, to_eye_metres);
+  EXPECT_NEAR(eye.depth_mm, 4e-3f, 1e-9f);
+  EXPECT_NEAR(eye.sigma_mm, 6e-3f, 1e-9f);
+  const glm::mat3 rotation(view);
+  for (const glm::vec3 v :
+       {glm::vec3(5.0f, 2.0f, 20.0f), glm::vec3(3.0f, -1.0f, 20.0f), glm::vec3(-9.0f, 0.0f, 19.0f)}) {
+    const glm::vec3 n = glm::normalize(glm::vec3(0.1f, -0.2f, 1.0f));
+    const glm::vec3 in_world =
+        glm::vec3(to_eye_metres * glm::vec4(displaced_position(v, n, {&world, 1}), 1.0f));
+    const glm::vec3 in_eye =
+        displaced_position(glm::vec3(to_eye_metres * glm::vec4(v, 1.0f)), rotation * n, {&eye, 1});
+    EXPECT_NEAR(glm::distance(in_world, in_eye), 0.0f, 1e-7f);
+    const glm::vec3 tilted_world = rotation * perturbed_normal(n, v, {&world, 1});
+    const glm::vec3 tilted_eye =
+        perturbed_normal(rotation * n, glm::vec3(to_eye_metres * glm::vec4(v, 1.0f)), {&eye, 1});
+    EXPECT_NEAR(glm::distance(tilted_world, tilted_eye), 0.0f, 1e-5f);
+  }
 }
 
 TEST(PerturbedNormal, TiltsTowardTheContactByTheSlopeAngle) {

@@ -451,3 +451,50 @@ TEST(RendererState, LeavesTheHostsGlStateAsItFoundItAndIgnoresIt) {
 
 }  // namespace
 }  // namespace palpate::gl
+
+namespace palpate::gl {
+namespace {
+
+// Drawn where nothing can show, the renderer says why instead of drawing nothing silently.
+TEST(RendererTarget, ReportsAZeroViewportAnIncompleteFramebufferAndAMissingDepthBuffer) {
+  test::gl_context();
+  Renderer renderer;
+  renderer.upload(scene_of(make_sphere(20.0f, 500)));
+  const Camera camera = looking_at({0.0f, -100.0f, 0.0f}, {0, 0, 0});
+  const Framebuffer target({64, 64});
+  target.bind();
+  DrawResult result = renderer.draw(camera.view, camera.projection, std::span<const ObjectDent>{});
+  EXPECT_FALSE(result.drew_nothing());
+  EXPECT_FALSE(result.no_depth_buffer);
+
+  glViewport(0, 0, 0, 64);
+  result = renderer.draw(camera.view, camera.projection, std::span<const ObjectDent>{});
+  EXPECT_TRUE(result.zero_viewport);
+  EXPECT_TRUE(result.drew_nothing());
+  glViewport(0, 0, 64, 64);
+
+  // A host framebuffer with a colour attachment only.
+  GLuint framebuffer = 0, color = 0;
+  glCreateFramebuffers(1, &framebuffer);
+  glCreateRenderbuffers(1, &color);
+  glNamedRenderbufferStorage(color, GL_RGBA8, 64, 64);
+  glNamedFramebufferRenderbuffer(framebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  result = renderer.draw(camera.view, camera.projection, std::span<const ObjectDent>{});
+  EXPECT_TRUE(result.no_depth_buffer);
+  EXPECT_FALSE(result.drew_nothing());
+  // And one with nothing attached at all.
+  GLuint empty = 0;
+  glCreateFramebuffers(1, &empty);
+  glBindFramebuffer(GL_FRAMEBUFFER, empty);
+  result = renderer.draw(camera.view, camera.projection, std::span<const ObjectDent>{});
+  EXPECT_TRUE(result.incomplete_framebuffer);
+  EXPECT_TRUE(result.drew_nothing());
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDeleteFramebuffers(1, &framebuffer);
+  glDeleteFramebuffers(1, &empty);
+  glDeleteRenderbuffers(1, &color);
+}
+
+}  // namespace
+}  // namespace palpate::gl

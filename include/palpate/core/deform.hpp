@@ -48,6 +48,13 @@ glm::vec3 perturbed_normal(glm::vec3 n0, glm::vec3 v, std::span<const Dent> dent
 // normals of the deformed triangles. Allocates `out`.
 void deform_mesh(const Mesh& mesh, const glm::mat4& transform, std::span<const Dent> dents, Mesh& out);
 
+// The dent as seen in another space, for hosts whose shaders work there (eye space, metres, ...): the
+// formulas hold in any one space, as long as positions, directions and dents are all in it.
+// `to_space` maps world millimetres to that space: a rotation and translation with, at most, a uniform
+// scale (a view matrix times 0.001 for a host in metres). The centre is mapped; depth and sigma are
+// scaled by the matrix's scale.
+Dent dent_in_space(const Dent& dent, const glm::mat4& to_space) noexcept;
+
 // The dent a contact makes on an object of spread `sigma_mm`.
 inline Dent dent_from_contact(const Contact& contact, float sigma_mm) noexcept {
   return Dent{contact.point_mm, contact.depth_mm, sigma_mm};

@@ -1,5 +1,7 @@
 #pragma once
-// Edge topology of a mesh: is it closed, manifold and consistently oriented? (allocates)
+// Edge topology of a mesh: is it closed, manifold and consistently oriented? By vertex index: weld a
+// mesh with split vertices first (weld_by_position, palpate/core/displacement.hpp) to see its surface.
+// Allocates.
 #include <cstddef>
 
 #include "palpate/core/mesh.hpp"
@@ -19,6 +21,8 @@ struct MeshTopology {
   bool closed() const noexcept { return boundary_edges == 0 && nonmanifold_edges == 0; }
   bool manifold() const noexcept { return nonmanifold_edges == 0 && degenerate_triangles == 0; }
   bool oriented() const noexcept { return misoriented_edges == 0; }
+  // Handles of a closed, manifold, oriented surface, summed over its components: (2 C - chi) / 2.
+  long genus() const noexcept { return (2 * long(components) - euler_characteristic) / 2; }
 };
 
 MeshTopology analyze_topology(const Mesh& mesh);

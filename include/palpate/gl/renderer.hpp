@@ -93,6 +93,12 @@ struct DrawResult {
   int deformed_objects = 0;  // objects that had at least one dent
   int occlusion_tested = 0;  // objects drawn under an occlusion query of their proxy (maybe culled)
   int occlusion_culled = 0;  // of those, the ones the query hid (counted with read_occlusion_results only)
+  // Why a draw could show nothing, or not as the host meant, read from the state the host left bound:
+  bool zero_viewport = false;           // the viewport has no area: nothing is drawn
+  bool incomplete_framebuffer = false;  // the bound draw framebuffer is not complete: nothing is drawn
+  bool no_depth_buffer =
+      false;  // it has no depth buffer: drawn, but nearer surfaces do not hide farther ones
+  bool drew_nothing() const noexcept { return zero_viewport || incomplete_framebuffer; }
 };
 
 class Renderer {

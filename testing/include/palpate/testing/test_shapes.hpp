@@ -21,4 +21,12 @@ Mesh make_hollow_box(float outer_mm, float inner_mm);
 Mesh make_comb(int teeth, float tooth_width_mm, float gap_mm, float tooth_height_mm, float base_height_mm,
                float depth_mm);
 
+// A closed torus about the z axis: tube centre `major_mm` from the axis, tube radius `minor_mm`,
+// `segments` steps around the axis and `sides` around the tube; smooth (shared vertices).
+Mesh make_torus(float major_mm, float minor_mm, int segments, int sides);
+
+// The mesh flat-shaded as exporters write it: three vertices of its own for every triangle, each with
+// the face's normal (so no two triangles share a vertex, though their corners coincide).
+Mesh split_flat(const Mesh& mesh);
+
 }  // namespace palpate::testing
