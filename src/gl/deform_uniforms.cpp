@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "current_context.hpp"
 #include "palpate/core/error.hpp"
 
 namespace palpate::gl {
@@ -21,6 +22,10 @@ std::string program_log(GLuint program) {
   glGetProgramInfoLog(program, length, nullptr, log.data());
   log.resize(log.find('\0') == std::string::npos ? log.size() : log.find('\0'));
   return log.empty() ? "(no log)" : log;
+}
+
+void delete_buffer(GLuint buffer) noexcept {
+  if (buffer && a_context_is_current()) glDeleteBuffers(1, &buffer);
 }
 
 }  // namespace
@@ -62,7 +67,7 @@ DeformUniforms::DeformUniforms(std::uint32_t program, std::uint32_t block_bindin
 }
 
 DeformUniforms::~DeformUniforms() {
-  if (buffer_) glDeleteBuffers(1, &buffer_);
+  delete_buffer(buffer_);
 }
 
 DeformUniforms::DeformUniforms(DeformUniforms&& other) noexcept
@@ -77,7 +82,7 @@ DeformUniforms::DeformUniforms(DeformUniforms&& other) noexcept
 
 DeformUniforms& DeformUniforms::operator=(DeformUniforms&& other) noexcept {
   if (this != &other) {
-    if (buffer_) glDeleteBuffers(1, &buffer_);
+    delete_buffer(buffer_);
     program_ = other.program_;
     dialect_ = other.dialect_;
     buffer_ = std::exchange(other.buffer_, 0);

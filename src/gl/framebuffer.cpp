@@ -4,6 +4,7 @@
 
 #include <string>
 
+#include "current_context.hpp"
 #include "palpate/core/error.hpp"
 
 namespace palpate::gl {
@@ -71,6 +72,7 @@ Framebuffer::Framebuffer(FramebufferParams options) : options_(options) {
 }
 
 Framebuffer::~Framebuffer() {
+  if (!a_context_is_current()) return;
   const GLuint framebuffers[] = {framebuffer_, resolve_framebuffer_};
   const GLuint renderbuffers[] = {color_, depth_, resolve_color_};
   glDeleteFramebuffers(2, framebuffers);

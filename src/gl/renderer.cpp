@@ -15,6 +15,7 @@
 #include <utility>
 #include <vector>
 
+#include "current_context.hpp"
 #include "gl_state_guard.hpp"
 #include "occlusion_proxy.hpp"
 #include "palpate/core/error.hpp"
@@ -165,6 +166,7 @@ struct GpuMesh {
     index_count = static_cast<GLsizei>(mesh.indices.size());
   }
   ~GpuMesh() {
+    if (!a_context_is_current()) return;
     const GLuint buffers[] = {vertex_buffer, color_buffer, direction_buffer, index_buffer};
     glDeleteBuffers(4, buffers);
     glDeleteVertexArrays(1, &vertex_array);
@@ -195,6 +197,7 @@ struct NaiveBuffers {
     glVertexArrayElementBuffer(vertex_array, index_buffer);
   }
   ~NaiveBuffers() {
+    if (!a_context_is_current()) return;
     const GLuint buffers[] = {position_buffer, normal_buffer};
     glDeleteBuffers(2, buffers);
     glDeleteVertexArrays(1, &vertex_array);
@@ -211,7 +214,9 @@ struct DentBuffer {
     glCreateBuffers(1, &id);
     glNamedBufferData(id, sizeof(DeformBlockData), &empty, GL_DYNAMIC_DRAW);
   }
-  ~DentBuffer() { glDeleteBuffers(1, &id); }
+  ~DentBuffer() {
+    if (a_context_is_current()) glDeleteBuffers(1, &id);
+  }
   DentBuffer(const DentBuffer&) = delete;
   DentBuffer& operator=(const DentBuffer&) = delete;
 
@@ -226,7 +231,9 @@ struct DentBuffer {
 struct Query {
   GLuint id = 0;
   Query() { glCreateQueries(GL_ANY_SAMPLES_PASSED_CONSERVATIVE, 1, &id); }
-  ~Query() { glDeleteQueries(1, &id); }
+  ~Query() {
+    if (a_context_is_current()) glDeleteQueries(1, &id);
+  }
   Query(const Query&) = delete;
   Query& operator=(const Query&) = delete;
 };

@@ -4,6 +4,7 @@
 
 #include <utility>
 
+#include "current_context.hpp"
 #include "palpate/core/error.hpp"
 
 namespace palpate::gl {
@@ -68,7 +69,7 @@ ShaderProgram::ShaderProgram(std::string name, std::string_view vertex_source,
 }
 
 ShaderProgram::~ShaderProgram() {
-  if (program_) glDeleteProgram(program_);
+  if (program_ && a_context_is_current()) glDeleteProgram(program_);
 }
 
 ShaderProgram::ShaderProgram(ShaderProgram&& other) noexcept
@@ -76,7 +77,7 @@ ShaderProgram::ShaderProgram(ShaderProgram&& other) noexcept
 
 ShaderProgram& ShaderProgram::operator=(ShaderProgram&& other) noexcept {
   if (this != &other) {
-    if (program_) glDeleteProgram(program_);
+    if (program_ && a_context_is_current()) glDeleteProgram(program_);
     name_ = std::move(other.name_);
     program_ = std::exchange(other.program_, 0);
   }

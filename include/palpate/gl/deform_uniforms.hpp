@@ -10,7 +10,8 @@
 //     glUseProgram(program);
 //     dents.apply();                                   // with the program in use, before drawing
 //
-// Needs the program's context current for all of its life. Not thread-safe.
+// Needs the program's context current when made, set and applied; destroyed after the context has
+// gone (glfwTerminate first), it leaves the buffer to the context's end. Not thread-safe.
 #include <cstdint>
 #include <span>
 

@@ -18,9 +18,10 @@
 // restored). With occlusion culling on, draw() must not be called inside the caller's own
 // GL_ANY_SAMPLES_PASSED_CONSERVATIVE query or conditional rendering.
 //
-// Needs a current OpenGL 4.5 core context for all of its life (construction compiles its programs and
-// throws palpate::Error with the driver's log if one fails). Not thread-safe: use it on the thread of
-// its context.
+// Needs its OpenGL 4.5 context current when made (construction compiles its programs and throws
+// palpate::Error with the driver's log if one fails), uploading and drawing; destroyed after that
+// context has ended (glfwTerminate first), it leaves its GL objects to the context's end. Not
+// thread-safe: use it on the thread of its context.
 #include <cstdint>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>

@@ -1,6 +1,8 @@
-// An OpenGL application that draws a mesh with its own shaders, in a window or, with --headless FILE,
-// offscreen into a PNG. existing_app.cpp is the application as it was, existing_app_deformed.cpp the
-// same with palpate's GPU deformation added (README.md shows the diff).
+// An OpenGL 4.5 application that draws a mesh with its own shaders, in a window or, with --headless FILE,
+// offscreen into a PNG, using palpate's own context, window, framebuffer and shader classes.
+// gl45_app.cpp is the application as it was, gl45_app_deformed.cpp the same with palpate's GPU
+// deformation added (README.md shows the diff).
+// Usage: gl45_app [--headless OUT.png] [--mesh FILE.ply]
 #include <epoxy/gl.h>
 
 #include <cmath>
@@ -10,7 +12,9 @@
 #include <glm/gtc/type_ptr.hpp>
 #include <optional>
 
+#include "palpate/core/load.hpp"
 #include "palpate/core/shapes.hpp"
+#include "palpate/gl/deform_uniforms.hpp"
 #include "palpate/gl/framebuffer.hpp"
 #include "palpate/gl/headless_context.hpp"
 #include "palpate/gl/png.hpp"
@@ -23,25 +27,34 @@ layout(location = 1) in vec3 normal;
 uniform mat4 model;
 uniform mat4 view_projection;
 out vec3 world_normal;
+out vec3 rest_world;
 void main() {
   vec3 world = (model * vec4(position, 1.0)).xyz;
   world_normal = mat3(model) * normal;
+  rest_world = world;
+  world = palpate_displace(world, world_normal);
   gl_Position = view_projection * vec4(world, 1.0);
 }
 )glsl";
 
 constexpr const char* fragment_source = R"glsl(#version 450 core
 in vec3 world_normal;
+in vec3 rest_world;
 out vec4 color;
 void main() {
-  vec3 n = normalize(world_normal);
+  vec3 n = palpate_perturb_normal(world_normal, rest_world);
   float light = max(dot(n, normalize(vec3(-0.6, -0.5, 0.6))), 0.0);
   color = vec4(vec3(0.08) + vec3(0.9, 0.72, 0.62) * light, 1.0);
 }
 )glsl";
 
 int main(int argc, char** argv) {
-  const bool headless = argc == 3 && std::strcmp(argv[1], "--headless") == 0;
+  const char* headless = nullptr;
+  const char* mesh_file = nullptr;
+  for (int i = 1; i + 1 < argc; i += 2) {
+    if (std::strcmp(argv[i], "--headless") == 0) headless = argv[i + 1];
+    if (std::strcmp(argv[i], "--mesh") == 0) mesh_file = argv[i + 1];
+  }
   constexpr int width = 800, height = 800;
   std::optional<palpate::gl::HeadlessContext> context;
   std::optional<palpate::gl::Window> window;
@@ -51,7 +64,7 @@ int main(int argc, char** argv) {
     window.emplace(palpate::gl::WindowParams{width, height, "existing app"});
   }
 
-  const palpate::Mesh mesh = palpate::make_sphere(50.0f, 40000);
+  const palpate::Mesh mesh = mesh_file ? palpate::load_mesh(mesh_file) : palpate::make_sphere(50.0f, 40000);
   GLuint vertex_array = 0, buffers[3] = {};
   glCreateVertexArrays(1, &vertex_array);
   glCreateBuffers(3, buffers);
@@ -68,7 +81,9 @@ int main(int argc, char** argv) {
     glVertexArrayAttribBinding(vertex_array, attribute, attribute);
   }
   glVertexArrayElementBuffer(vertex_array, buffers[2]);
-  const palpate::gl::ShaderProgram program("existing app", vertex_source, fragment_source);
+  const palpate::gl::ShaderProgram program("existing app", palpate::gl::insert_deform_glsl(vertex_source, 1),
+                                           palpate::gl::insert_deform_glsl(fragment_source, 1));
+  palpate::gl::DeformUniforms dents(program.id());
 
   const glm::mat4 view_projection =
       glm::perspective(glm::radians(40.0f), float(width) / float(height), 10.0f, 500.0f) *
@@ -79,7 +94,12 @@ int main(int argc, char** argv) {
     glClearColor(0.1f, 0.1f, 0.12f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     const glm::mat4 model = glm::rotate(glm::mat4(1.0f), float(0.3 * time_s), glm::vec3(0, 0, 1));
+    const palpate::Dent dent{
+        glm::normalize(glm::vec3(0.2f, -1.0f, 0.35f)) * 50.0f,  // contact point facing the camera
+        float(3.0 + 2.0 * std::cos(time_s)), 7.0f};             // depth 1..5 mm, sigma 7 mm
+    dents.set({&dent, 1});
     glUseProgram(program.id());
+    dents.apply();
     glUniformMatrix4fv(program.uniform("model"), 1, GL_FALSE, glm::value_ptr(model));
     glUniformMatrix4fv(program.uniform("view_projection"), 1, GL_FALSE, glm::value_ptr(view_projection));
     glBindVertexArray(vertex_array);
@@ -90,8 +110,8 @@ int main(int argc, char** argv) {
     const palpate::gl::Framebuffer target({width, height});
     target.bind();
     draw_frame(0.0);
-    palpate::gl::save_png(argv[2], width, height, target.read_rgba8());
-    std::printf("wrote %s\n", argv[2]);
+    palpate::gl::save_png(headless, width, height, target.read_rgba8());
+    std::printf("wrote %s\n", headless);
   } else {
     for (double t = 0.0; !window->should_close(); t += 1.0 / 60.0) {
       glViewport(0, 0, window->framebuffer_width(), window->framebuffer_height());
