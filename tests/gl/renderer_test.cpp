@@ -455,6 +455,58 @@ TEST(RendererState, LeavesTheHostsGlStateAsItFoundItAndIgnoresIt) {
 namespace palpate::gl {
 namespace {
 
+// Inside a host's own render pass: into the host's framebuffer, tested against the host's depth (here
+// the left half already holds something at the near plane), and writing depth for what the host draws
+// after it.
+TEST(RendererTarget, DrawsIntoTheHostsFramebufferAgainstTheHostsDepthAndWritesDepth) {
+  test::gl_context();
+  Renderer renderer;
+  renderer.upload(scene_of(make_sphere(20.0f, 2000)));
+  const Camera camera = looking_at({0.0f, -100.0f, 0.0f}, {0, 0, 0});
+  constexpr int side = 64;
+  GLuint framebuffer = 0, renderbuffers[2];
+  glCreateFramebuffers(1, &framebuffer);
+  glCreateRenderbuffers(2, renderbuffers);
+  glNamedRenderbufferStorage(renderbuffers[0], GL_RGBA8, side, side);
+  glNamedRenderbufferStorage(renderbuffers[1], GL_DEPTH_COMPONENT24, side, side);
+  glNamedFramebufferRenderbuffer(framebuffer, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffers[0]);
+  glNamedFramebufferRenderbuffer(framebuffer, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, renderbuffers[1]);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glViewport(0, 0, side, side);
+  glClearColor(0, 0, 0, 0);
+  glClearDepth(1.0);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_SCISSOR_TEST);  // the host's near occluder over the left half
+  glScissor(0, 0, side / 2, side);
+  glClearDepth(0.0);
+  glClear(GL_DEPTH_BUFFER_BIT);
+  glDisable(GL_SCISSOR_TEST);
+  glClearDepth(1.0);
+
+  const DrawResult result = renderer.draw(camera.view, camera.projection, std::span<const ObjectDent>{});
+  EXPECT_FALSE(result.drew_nothing());
+  EXPECT_FALSE(result.no_depth_buffer);
+  std::vector<std::uint8_t> color(side * side * 4);
+  std::vector<float> depth(side * side);
+  glReadPixels(0, 0, side, side, GL_RGBA, GL_UNSIGNED_BYTE, color.data());
+  glReadPixels(0, 0, side, side, GL_DEPTH_COMPONENT, GL_FLOAT, depth.data());
+  int left_drawn = 0, right_drawn = 0, right_depth_written = 0;
+  for (int y = 0; y < side; ++y) {
+    for (int x = 0; x < side; ++x) {
+      const std::size_t i = std::size_t(y) * side + std::size_t(x);
+      const bool drawn = color[4 * i + 3] > 0;
+      (x < side / 2 ? left_drawn : right_drawn) += drawn;
+      right_depth_written += x >= side / 2 && drawn && depth[i] < 1.0f;
+    }
+  }
+  EXPECT_EQ(left_drawn, 0) << "drawn over the host's nearer content";
+  EXPECT_GT(right_drawn, 100) << "the sphere did not reach the host's framebuffer";
+  EXPECT_EQ(right_depth_written, right_drawn) << "the sphere's pixels did not write depth";
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+  glDeleteFramebuffers(1, &framebuffer);
+  glDeleteRenderbuffers(2, renderbuffers);
+}
+
 // Drawn where nothing can show, the renderer says why instead of drawing nothing silently.
 TEST(RendererTarget, ReportsAZeroViewportAnIncompleteFramebufferAndAMissingDepthBuffer) {
   test::gl_context();
