@@ -121,7 +121,7 @@ SceneObject object(std::string name, Mesh mesh, Material material = {}) {
 // inside the skin, with the default scene's materials.
 Scene table1_scene(bool brain, bool skin) {
   Scene scene;
-  for (SceneObject& o : default_scene().objects) {
+  for (SceneObject& o : phantom_scene().objects) {
     if ((o.name == "brain" && brain) || (o.name == "skin" && skin)) scene.objects.push_back(std::move(o));
   }
   return scene;

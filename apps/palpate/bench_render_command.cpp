@@ -69,7 +69,7 @@ SceneObject object(std::string name, Mesh mesh, float sigma_mm, glm::vec3 color)
 // The paper's Table I models: the default scene's phantoms with their materials. Drawn skin first, as
 // it hides the brain.
 SceneObject phantom(const std::string& name) {
-  for (SceneObject& o : default_scene().objects) {
+  for (SceneObject& o : phantom_scene().objects) {
     if (o.name == name) return std::move(o);
   }
   throw Error("bench render: the default scene has no '" + name + "'");

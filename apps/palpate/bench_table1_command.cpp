@@ -81,7 +81,7 @@ std::filesystem::path plot_run(const std::string& file, const std::vector<ModelR
 }
 
 int bench_table1(const Table1Options& options) {
-  const Scene scene = options.scene_file.empty() ? default_scene() : load_scene(options.scene_file);
+  const Scene scene = scene_for_option(options.scene_file);
   GlSession session = open_gl(options.headless, options.width, options.height, "palpate bench table1");
   gl::Framebuffer framebuffer(
       {.width = options.width, .height = options.height, .color = gl::ColorFormat::rgba8, .samples = 0});

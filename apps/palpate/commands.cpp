@@ -1,6 +1,11 @@
 #include "commands.hpp"
 
+#include <cstdio>
 #include <map>
+
+#include "palpate/core/scene_file.hpp"
+#include "palpate/volume/anatomy.hpp"
+#include "progress.hpp"
 
 namespace palpate::cli {
 namespace {
@@ -26,7 +31,20 @@ void on_selected(CLI::App* command, std::function<int()> action) {
 
 void add_scene_option(CLI::App* command, std::string& scene_file) {
   command->add_option("--scene", scene_file,
-                      "Scene file (TOML); default: the built-in brain and skin phantoms");
+                      "Scene file (TOML), or 'phantom' for the generated brain and skin; default: Colin27's "
+                      "real brain and skin (Debian package mricron-data), else the phantoms");
+}
+
+Scene scene_for_option(const std::string& scene_file) {
+  if (scene_file == "phantom") return phantom_scene();
+  if (!scene_file.empty()) return load_scene(scene_file);
+  Progress progress;
+  volume::DefaultSceneParams params;
+  params.on_note = [](const std::string& note) { std::fprintf(stderr, "palpate: note: %s\n", note.c_str()); };
+  params.on_progress = [&](std::string_view object, std::string_view stage, double fraction) {
+    progress.update(std::string("building the Colin27 ") + std::string(object), stage, fraction);
+  };
+  return volume::default_scene(params);
 }
 
 void add_size_options(CLI::App* command, int& width, int& height, const std::string& what) {

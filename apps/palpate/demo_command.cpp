@@ -122,7 +122,7 @@ std::vector<KeySlot> plan_key_frames(const std::vector<Phase>& phases) {
 int run_demo(const DemoOptions& options) {
   const std::filesystem::path out = options.out_dir;
   std::filesystem::create_directories(out);
-  const Scene scene = options.scene_file.empty() ? default_scene() : load_scene(options.scene_file);
+  const Scene scene = scene_for_option(options.scene_file);
   GlSession gl_session = open_gl(options.headless, options.width, options.height, "palpate demo");
   const std::vector<Phase> phases = demo_phases(scene, glm::vec2(options.width, options.height));
   std::printf("palpate demo: %zu objects, %zu vertices; %s on %s; output in %s/\n", scene.objects.size(),

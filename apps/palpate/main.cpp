@@ -21,6 +21,7 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", "palpate 0.1.0");
   palpate::cli::add_demo_command(app);
   palpate::cli::add_mesh_command(app);
+  palpate::cli::add_scene_command(app);
   palpate::cli::add_view_command(app);
   palpate::cli::add_bench_command(app);
   palpate::cli::add_bench_haptics_command(app);

@@ -1,4 +1,4 @@
-// palpate mesh info | convert | phantom
+// palpate mesh info | convert | phantom (from-volume: volume_commands.cpp)
 #include <chrono>
 #include <cstdio>
 #include <filesystem>
@@ -121,6 +121,7 @@ void add_mesh_command(CLI::App& app) {
                 with_thousands(mesh.vertex_count()).c_str(), with_thousands(mesh.triangle_count()).c_str());
     return 0;
   });
+  add_mesh_from_volume_command(*group);
 }
 
 }  // namespace palpate::cli

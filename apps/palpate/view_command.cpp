@@ -189,7 +189,7 @@ void draw_panel(const Scene& scene, std::vector<Material>& materials, gl::DrawPa
 }
 
 int run_view(const ViewOptions& options) {
-  Scene scene = options.scene_file.empty() ? default_scene() : load_scene(options.scene_file);
+  Scene scene = scene_for_option(options.scene_file);
   GlSession session = open_gl(false, options.width, options.height, "palpate view");
   if (!session.window)
     throw Error("palpate view needs a display ($DISPLAY): run it under X or Xvfb, or use `palpate demo`");

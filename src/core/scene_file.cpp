@@ -6,7 +6,11 @@
 #include <toml++/toml.h>
 
 #include <array>
+#include <cstdio>
+#include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
+#define GLM_ENABLE_EXPERIMENTAL
+#include <glm/gtx/euler_angles.hpp>
 #include <set>
 #include <string>
 
@@ -154,7 +158,44 @@ Scene load_scene(const std::filesystem::path& file) {
   return scene;
 }
 
-Scene default_scene() {
+void save_scene(const Scene& scene, const std::filesystem::path& file) {
+  std::string text = "# palpate scene: millimetres, newtons, seconds\n";
+  std::error_code error;
+  if (!file.parent_path().empty()) std::filesystem::create_directories(file.parent_path(), error);
+  for (const SceneObject& object : scene.objects) {
+    const glm::mat3 rotation(object.transform);
+    const glm::mat3 identity_if_rigid = rotation * glm::transpose(rotation);
+    float off = std::abs(glm::determinant(rotation) - 1.0f);
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r)
+        off = std::max(off, std::abs(identity_if_rigid[c][r] - (c == r ? 1.0f : 0.0f)));
+    if (off > 1e-4f) {
+      throw Error(file, 0, "object '" + object.name + "': its transform is not a rotation and translation");
+    }
+    float z = 0.0f, y = 0.0f, x = 0.0f;  // load_scene composes translate * Rz * Ry * Rx
+    glm::extractEulerAngleZYX(glm::mat4(rotation), z, y, x);
+    const glm::vec3 translate(object.transform[3]);
+    const std::filesystem::path mesh_file = file.stem().string() + "_" + object.name + ".ply";
+    save_mesh(object.mesh, file.parent_path() / mesh_file);
+    const Material& m = object.material;
+    char block[1024];
+    std::snprintf(block, sizeof block,
+                  "\n[[object]]\nname = \"%s\"\nmesh = \"%s\"\ntranslate = [%.6g, %.6g, %.6g]\n"
+                  "rotate_deg = [%.6g, %.6g, %.6g]\nsigma_mm = %.6g\nstiffness_n_per_mm = %.6g\n"
+                  "damping_ns_per_m = %.6g\ncolor = [%.6g, %.6g, %.6g]\ntouchable = %s\nvisible = %s\n",
+                  object.name.c_str(), mesh_file.c_str(), translate.x, translate.y, translate.z,
+                  glm::degrees(x) + 0.0f, glm::degrees(y) + 0.0f, glm::degrees(z) + 0.0f, m.sigma_mm,
+                  m.stiffness_n_per_mm, m.damping_ns_per_m, m.color.r, m.color.g, m.color.b,
+                  m.touchable ? "true" : "false", m.visible ? "true" : "false");
+    text += block;
+  }
+  std::ofstream out(file, std::ios::binary);
+  out << text;
+  out.close();
+  if (!out) throw Error(file, 0, "could not write the scene file");
+}
+
+Scene phantom_scene() {
   const auto phantom = [](std::string name, Mesh mesh, Material material) {
     SceneObject object;
     object.name = std::move(name);
@@ -163,17 +204,8 @@ Scene default_scene() {
     return object;
   };
   Scene scene;
-  scene.objects.push_back(phantom("brain", make_brain_phantom(),
-                                  {.sigma_mm = 5.0f,
-                                   .stiffness_n_per_mm = 0.3f,
-                                   .damping_ns_per_m = 1.0f,
-                                   .color = {0.88f, 0.62f, 0.60f}}));
-  // Skin spreads a dent widely and is stiffer than brain (the paper's Fig. 3 against Fig. 1).
-  scene.objects.push_back(phantom("skin", make_skin_phantom(),
-                                  {.sigma_mm = 14.0f,
-                                   .stiffness_n_per_mm = 0.8f,
-                                   .damping_ns_per_m = 1.0f,
-                                   .color = {0.93f, 0.76f, 0.64f}}));
+  scene.objects.push_back(phantom("brain", make_brain_phantom(), brain_material));
+  scene.objects.push_back(phantom("skin", make_skin_phantom(), skin_material));
   return scene;
 }
 

@@ -75,7 +75,8 @@ TEST(BenchCommand, RenderAtItsSmallestComparesEveryVariant) {
 TEST(BenchCommand, Table1AtItsSmallestGivesThePapersRows) {
   const auto dir = test::scratch_dir("bench_table1");
   const nlohmann::json report =
-      run_bench("table1 --headless --seconds 0.5 --width 160 --height 128 --plot ''", dir / "table1.json");
+      run_bench("table1 --headless --scene phantom --seconds 0.5 --width 160 --height 128 --plot ''",
+                dir / "table1.json");
   ASSERT_EQ(report["rows"].size(), 3u);
   const char* models[] = {"Brain", "Skin", "Skin + Brain"};
   for (std::size_t i = 0; i < 3; ++i) {

@@ -92,7 +92,7 @@ void expect_dent_only_around_the_contact(const std::filesystem::path& out) {
 
   // The same view, undeformed, rendered by the library.
   gl::HeadlessContext context;
-  Scene scene = default_scene();
+  Scene scene = phantom_scene();
   for (std::size_t i = 0; i < scene.objects.size(); ++i)
     scene.objects[i].material.visible = key["visible"][i].get<bool>();
   gl::Renderer renderer;
@@ -137,8 +137,8 @@ void expect_dent_only_around_the_contact(const std::filesystem::path& out) {
 
 TEST(DemoRun, WritesItsReportAndFramesThatShowTheDentAroundTheContactOnly) {
   const auto out = test::scratch_dir("demo_run");
-  const auto result =
-      test::run_command(cli + " demo --headless --frames 30 --width 480 --height 384 --out " + out.string());
+  const auto result = test::run_command(
+      cli + " demo --headless --scene phantom --frames 30 --width 480 --height 384 --out " + out.string());
   expect_files_and_report(out, result);
   if (result.exit_status == 0) expect_dent_only_around_the_contact(out);
 }

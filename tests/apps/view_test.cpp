@@ -20,7 +20,8 @@ TEST(ViewCommand, RunsUnderXvfbAndTakesAScreenshot) {
   const auto run = test::run_command(
       "cd " + dir.string() +
       " && ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" xvfb-run -a -s '-screen 0 1024x768x24' " +
-      std::string(PALPATE_CLI) + " view --width 800 --height 600 --frames 15 --press-depth 4 --screenshot " +
+      std::string(PALPATE_CLI) +
+      " view --scene phantom --width 800 --height 600 --frames 15 --press-depth 4 --screenshot " +
       shot.string());
   ASSERT_EQ(run.exit_status, 0) << run.both();
   int width = 0, height = 0, channels = 0;

@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "palpate/core/error.hpp"
 #include "palpate/core/load.hpp"
+#include "palpate/core/material.hpp"
 #include "palpate/core/phantom.hpp"
 #include "palpate/core/shapes.hpp"
 #include "test_paths.hpp"
@@ -80,7 +82,8 @@ mesh = "phantom:skin"
 translate = [1, -2, 0.5]
 rotate_deg = [30, 45, 60]
 )");
-  const SceneObject& box = load_scene(file).objects[0];
+  const Scene scene = load_scene(file);
+  const SceneObject& box = scene.objects[0];
   const glm::vec3 moved = glm::vec3(box.transform * glm::vec4(1, 2, 3, 1));
   EXPECT_NEAR(moved.x, 1.424704f + 1.0f, 1e-5f);
   EXPECT_NEAR(moved.y, 2.931761f - 2.0f, 1e-5f);
@@ -121,10 +124,50 @@ TEST(SceneFile, MissingFileIsAnErrorNamingIt) {
 }
 
 TEST(DefaultScene, IsThePapersBrainAndSkin) {
-  const Scene scene = default_scene();
+  const Scene scene = phantom_scene();
   ASSERT_EQ(scene.objects.size(), 2u);
   EXPECT_EQ(scene.vertex_count(), 159063u);
   EXPECT_LT(scene.objects[0].material.sigma_mm, scene.objects[1].material.sigma_mm);
+}
+
+// save_scene writes what load_scene reads back: meshes beside the file, each transform (turned about
+// all three axes and moved) and material as they were.
+TEST(SceneFile, SavedScenesLoadBackTheSame) {
+  Scene scene;
+  SceneObject ball;
+  ball.name = "ball";
+  ball.mesh = make_sphere(10.0f, 300);
+  ball.transform = glm::translate(glm::mat4(1.0f), glm::vec3(5, -6, 7));
+  ball.transform = glm::rotate(ball.transform, 0.4f, glm::normalize(glm::vec3(1, 2, -3)));
+  ball.material = skin_material;
+  ball.material.touchable = false;
+  scene.objects.push_back(ball);
+  SceneObject plain = ball;
+  plain.name = "plain";
+  plain.transform = glm::mat4(1.0f);
+  plain.material = brain_material;
+  plain.material.visible = false;
+  scene.objects.push_back(plain);
+  const auto file = test::scratch_dir("save_scene") / "nested" / "saved.toml";
+  save_scene(scene, file);
+  EXPECT_TRUE(std::filesystem::exists(file.parent_path() / "saved_ball.ply"));
+  const Scene loaded = load_scene(file);
+  ASSERT_EQ(loaded.objects.size(), 2u);
+  for (std::size_t i = 0; i < 2; ++i) {
+    const SceneObject &a = scene.objects[i], &b = loaded.objects[i];
+    EXPECT_EQ(a.name, b.name);
+    EXPECT_EQ(a.mesh.vertex_count(), b.mesh.vertex_count());
+    for (int c = 0; c < 4; ++c)
+      for (int r = 0; r < 4; ++r) EXPECT_NEAR(a.transform[c][r], b.transform[c][r], 1e-5f) << a.name;
+    EXPECT_FLOAT_EQ(a.material.sigma_mm, b.material.sigma_mm);
+    EXPECT_FLOAT_EQ(a.material.stiffness_n_per_mm, b.material.stiffness_n_per_mm);
+    EXPECT_FLOAT_EQ(a.material.damping_ns_per_m, b.material.damping_ns_per_m);
+    EXPECT_EQ(a.material.color, b.material.color);
+    EXPECT_EQ(a.material.touchable, b.material.touchable);
+    EXPECT_EQ(a.material.visible, b.material.visible);
+  }
+  scene.objects[0].transform[0][0] = 2.0f;  // scaled: not a rotation
+  EXPECT_THROW(save_scene(scene, file), Error);
 }
 
 }  // namespace

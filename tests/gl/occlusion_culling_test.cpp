@@ -21,7 +21,7 @@ namespace palpate::gl {
 namespace {
 
 constexpr int width = 640, height = 512;
-constexpr int brain = 0, skin = 1;  // in default_scene()
+constexpr int brain = 0, skin = 1;  // in phantom_scene()
 
 struct Camera {
   glm::mat4 view, projection;
@@ -40,7 +40,7 @@ Camera outside(const Scene& scene, glm::vec3 direction) {
 }
 
 Scene default_scene_with(bool skin_visible) {
-  Scene scene = default_scene();
+  Scene scene = phantom_scene();
   EXPECT_EQ(scene.objects[brain].name, "brain");
   EXPECT_EQ(scene.objects[skin].name, "skin");
   scene.objects[skin].material.visible = skin_visible;

@@ -13,4 +13,11 @@ struct Material {
   bool visible = true;                  // the renderer draws it
 };
 
+// The paper's two materials: brain dents locally (its Fig. 1), skin spreads a dent widely and is
+// stiffer (its Fig. 3).
+inline constexpr Material brain_material{
+    .sigma_mm = 5.0f, .stiffness_n_per_mm = 0.3f, .damping_ns_per_m = 1.0f, .color = {0.88f, 0.62f, 0.60f}};
+inline constexpr Material skin_material{
+    .sigma_mm = 14.0f, .stiffness_n_per_mm = 0.8f, .damping_ns_per_m = 1.0f, .color = {0.93f, 0.76f, 0.64f}};
+
 }  // namespace palpate

@@ -1,5 +1,5 @@
 #pragma once
-// Scene files (TOML) and the built-in default scene.
+// Scene files (TOML) and the generated phantom scene.
 //
 //   # scene.toml: units are millimetres, newtons, seconds
 //   [[object]]
@@ -23,7 +23,12 @@ namespace palpate {
 
 Scene load_scene(const std::filesystem::path& file);
 
-// The paper's scene, generated: phantom brain inside phantom skin, sigma smaller for brain than skin.
-Scene default_scene();
+// Writes `scene` as a scene file and each object's mesh beside it as `<file stem>_<object name>.ply`
+// (object frame; the transform as translate and rotate_deg), so that load_scene reads it back. Throws
+// palpate::Error for a write error or a transform that is not a rotation and translation.
+void save_scene(const Scene& scene, const std::filesystem::path& file);
+
+// The paper's scene, generated: phantom brain inside phantom skin (brain_material, skin_material).
+Scene phantom_scene();
 
 }  // namespace palpate

@@ -1,0 +1,44 @@
+#pragma once
+// A scalar volume (an MRI or CT scan) and where its voxels lie in the scanner's millimetres.
+//
+// load_volume reads NIfTI-1 (.nii, .nii.gz; through niftiio: the scale slope and intercept applied, the
+// sform used where its code is set, else the qform, else the voxel sizes), NRRD (.nrrd, .nhdr) and
+// MetaImage (.mha, .mhd) (through VTK: origin, spacing and direction), and a folder holding one DICOM
+// series (through VTK's DICOM reader: origin and spacing; a folder of several series is an error that
+// lists them). Every error is a palpate::Error naming the file and what was wrong: not a volume, an
+// unsupported data type, a volume with fewer than 2 voxels along an axis.
+#include <filesystem>
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+#include <string>
+#include <vector>
+
+namespace palpate::volume {
+
+struct Volume {
+  glm::ivec3 size{0};           // voxels along i, j, k
+  std::vector<float> values;    // i fastest, then j, then k; in the scan's units (slope applied)
+  glm::dmat4 voxel_to_mm{1.0};  // voxel centre (i, j, k) to scanner millimetres (right-handed or not)
+  std::string frame;            // where voxel_to_mm came from, e.g. "NIfTI sform (code 4)"
+  std::filesystem::path source;
+
+  std::size_t voxel_count() const noexcept { return values.size(); }
+  float at(int i, int j, int k) const noexcept {
+    return values[std::size_t(i) +
+                  std::size_t(size.x) * (std::size_t(j) + std::size_t(size.y) * std::size_t(k))];
+  }
+};
+
+struct IntensityRange {
+  float min = 0.0f, max = 0.0f;
+};
+IntensityRange intensity_range(const Volume& volume) noexcept;
+
+// Throws palpate::Error (see above).
+Volume load_volume(const std::filesystem::path& file);
+
+// A threshold between background and tissue from the intensity histogram (Otsu's, 256 bins): what
+// `from-volume` uses when no --iso is given.
+float otsu_threshold(const Volume& volume);
+
+}  // namespace palpate::volume

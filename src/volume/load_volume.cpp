@@ -1,0 +1,237 @@
+#include <nifti1_io.h>
+#include <vtkCallbackCommand.h>
+#include <vtkDataArray.h>
+#include <vtkImageData.h>
+#include <vtkImageReader2.h>
+#include <vtkMatrix3x3.h>
+#include <vtkMetaImageReader.h>
+#include <vtkNew.h>
+#include <vtkNrrdReader.h>
+#include <vtkPointData.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <memory>
+
+#include "palpate/core/error.hpp"
+#include "palpate/volume/volume.hpp"
+
+namespace palpate::volume {
+namespace {
+
+bool has_extension(const std::filesystem::path& file, std::initializer_list<const char*> extensions) {
+  std::string name = file.filename().string();
+  std::transform(name.begin(), name.end(), name.begin(), [](unsigned char c) { return std::tolower(c); });
+  return std::any_of(extensions.begin(), extensions.end(), [&](const char* extension) {
+    return name.size() > std::string_view(extension).size() && name.ends_with(extension);
+  });
+}
+
+void check_size(const Volume& volume) {
+  if (volume.size.x < 2 || volume.size.y < 2 || volume.size.z < 2) {
+    throw Error(volume.source, 0,
+                "not a volume: " + std::to_string(volume.size.x) + " x " + std::to_string(volume.size.y) +
+                    " x " + std::to_string(volume.size.z) +
+                    " voxels (an isosurface needs at least 2 along each axis)");
+  }
+}
+
+template <class T>
+void convert(const void* data, std::size_t count, float slope, float intercept, std::vector<float>& out) {
+  const T* typed = static_cast<const T*>(data);
+  out.resize(count);
+  for (std::size_t i = 0; i < count; ++i) out[i] = float(double(typed[i]) * slope + intercept);
+}
+
+Volume load_nifti(const std::filesystem::path& file) {
+  nifti_set_debug_level(0);  // its messages would go to stderr; ours name the file
+  const std::unique_ptr<nifti_image, decltype(&nifti_image_free)> image(nifti_image_read(file.c_str(), 1),
+                                                                        &nifti_image_free);
+  if (!image || !image->data)
+    throw Error(file, 0, "not a readable NIfTI-1 volume (niftiio could not read it)");
+  Volume volume;
+  volume.source = file;
+  volume.size = {int(image->nx), int(image->ny), int(image->nz)};
+  check_size(volume);
+  const std::size_t count = std::size_t(image->nx) * std::size_t(image->ny) * std::size_t(image->nz);
+  // NIfTI: a slope of 0 means "no scaling".
+  const bool scaled =
+      image->scl_slope != 0.0f && std::isfinite(image->scl_slope) && std::isfinite(image->scl_inter);
+  const float slope = scaled ? image->scl_slope : 1.0f, intercept = scaled ? image->scl_inter : 0.0f;
+  switch (image->datatype) {  // only the first volume of a series (nt > 1)
+    case DT_UINT8:
+      convert<std::uint8_t>(image->data, count, slope, intercept, volume.values);
+      break;
+    case DT_INT8:
+      convert<std::int8_t>(image->data, count, slope, intercept, volume.values);
+      break;
+    case DT_INT16:
+      convert<std::int16_t>(image->data, count, slope, intercept, volume.values);
+      break;
+    case DT_UINT16:
+      convert<std::uint16_t>(image->data, count, slope, intercept, volume.values);
+      break;
+    case DT_INT32:
+      convert<std::int32_t>(image->data, count, slope, intercept, volume.values);
+      break;
+    case DT_UINT32:
+      convert<std::uint32_t>(image->data, count, slope, intercept, volume.values);
+      break;
+    case DT_INT64:
+      convert<std::int64_t>(image->data, count, slope, intercept, volume.values);
+      break;
+    case DT_UINT64:
+      convert<std::uint64_t>(image->data, count, slope, intercept, volume.values);
+      break;
+    case DT_FLOAT32:
+      convert<float>(image->data, count, slope, intercept, volume.values);
+      break;
+    case DT_FLOAT64:
+      convert<double>(image->data, count, slope, intercept, volume.values);
+      break;
+    default:
+      throw Error(file, 0,
+                  std::string("unsupported data type ") + nifti_datatype_string(image->datatype) +
+                      " (a scalar volume is needed: integers or floats)");
+  }
+  const auto to_glm = [](const mat44& m) {
+    glm::dmat4 out(1.0);
+    for (int row = 0; row < 4; ++row)
+      for (int column = 0; column < 4; ++column) out[column][row] = m.m[row][column];
+    return out;
+  };
+  if (image->sform_code > 0) {
+    volume.voxel_to_mm = to_glm(image->sto_xyz);
+    volume.frame = "NIfTI sform (code " + std::to_string(image->sform_code) + ")";
+  } else if (image->qform_code > 0) {
+    volume.voxel_to_mm = to_glm(image->qto_xyz);
+    volume.frame = "NIfTI qform (code " + std::to_string(image->qform_code) + ")";
+  } else {
+    volume.voxel_to_mm = glm::dmat4(1.0);
+    volume.voxel_to_mm[0][0] = image->dx > 0 ? image->dx : 1.0;
+    volume.voxel_to_mm[1][1] = image->dy > 0 ? image->dy : 1.0;
+    volume.voxel_to_mm[2][2] = image->dz > 0 ? image->dz : 1.0;
+    volume.frame = "NIfTI voxel sizes (no sform or qform)";
+  }
+  return volume;
+}
+
+// VTK prints a reader's complaints (and its executive's) to the terminal: silenced while palpate
+// reads, the reader's first observed message becoming part of palpate's error.
+class VtkMessages {
+ public:
+  explicit VtkMessages(vtkAlgorithm& source) : display_(vtkObject::GetGlobalWarningDisplay()) {
+    vtkObject::GlobalWarningDisplayOff();
+    callback_->SetClientData(&first_);
+    callback_->SetCallback([](vtkObject*, unsigned long, void* first, void* text) {
+      auto& kept = *static_cast<std::string*>(first);
+      if (!kept.empty() || !text) return;
+      // "Warning: In file, line N\nvtkNrrdReader (0x...): the message\n\n": keep the message.
+      std::string message = static_cast<const char*>(text);
+      if (const auto colon = message.rfind("): "); colon != std::string::npos) message.erase(0, colon + 3);
+      while (!message.empty() && message.back() == '\n') message.pop_back();
+      if (!message.starts_with("Algorithm ")) kept = message;  // the executive's "returned failure" dump
+    });
+    source.AddObserver(vtkCommand::ErrorEvent, callback_);
+    source.AddObserver(vtkCommand::WarningEvent, callback_);
+  }
+  ~VtkMessages() { vtkObject::SetGlobalWarningDisplay(display_); }
+  std::string first() const { return first_.empty() ? "" : " (" + first_ + ")"; }
+
+ private:
+  int display_;
+  std::string first_;
+  vtkNew<vtkCallbackCommand> callback_;
+};
+
+Volume load_with_vtk(vtkImageReader2& reader, const std::filesystem::path& file, const char* format) {
+  const VtkMessages messages(reader);
+  if (!reader.CanReadFile(file.c_str()))
+    throw Error(file, 0, std::string("not a readable ") + format + " file");
+  reader.SetFileName(file.c_str());
+  reader.Update();
+  vtkImageData* image = reader.GetOutput();
+  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
+  if (reader.GetErrorCode() != 0 || !scalars)
+    throw Error(file, 0, std::string("could not read the ") + format + " volume" + messages.first());
+  if (scalars->GetNumberOfComponents() != 1) {
+    throw Error(file, 0,
+                "unsupported data type: " + std::to_string(scalars->GetNumberOfComponents()) +
+                    " components per voxel (a scalar volume is needed)");
+  }
+  Volume volume;
+  volume.source = file;
+  int dims[3];
+  image->GetDimensions(dims);
+  volume.size = {dims[0], dims[1], dims[2]};
+  check_size(volume);
+  volume.values.resize(std::size_t(scalars->GetNumberOfTuples()));
+  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
+    volume.values[std::size_t(i)] = float(scalars->GetTuple1(i));
+  const double* spacing = image->GetSpacing();
+  const double* origin = image->GetOrigin();
+  const vtkMatrix3x3* direction = image->GetDirectionMatrix();
+  for (int column = 0; column < 3; ++column) {
+    for (int row = 0; row < 3; ++row)
+      volume.voxel_to_mm[column][row] = direction->GetElement(row, column) * spacing[column];
+    volume.voxel_to_mm[3][column] = origin[column];
+  }
+  volume.frame = std::string(format) + " origin, spacing and direction";
+  return volume;
+}
+
+}  // namespace
+
+IntensityRange intensity_range(const Volume& volume) noexcept {
+  if (volume.values.empty()) return {};
+  const auto [low, high] = std::minmax_element(volume.values.begin(), volume.values.end());
+  return {*low, *high};
+}
+
+Volume load_volume(const std::filesystem::path& file) {
+  std::error_code error;
+  if (!std::filesystem::exists(file, error)) throw Error(file, 0, "no such file or folder");
+  if (std::filesystem::is_directory(file, error)) {
+    throw Error(file, 0,
+                "a folder: DICOM series are not read yet; convert the series to NIfTI first "
+                "(dcm2niix, Debian package dcm2niix) and give the .nii.gz");
+  }
+  if (has_extension(file, {".nii", ".nii.gz"})) return load_nifti(file);
+  if (has_extension(file, {".nrrd", ".nhdr"})) {
+    vtkNew<vtkNrrdReader> reader;
+    return load_with_vtk(*reader, file, "NRRD");
+  }
+  if (has_extension(file, {".mha", ".mhd"})) {
+    vtkNew<vtkMetaImageReader> reader;
+    return load_with_vtk(*reader, file, "MetaImage");
+  }
+  throw Error(file, 0, "not a volume format palpate reads (.nii, .nii.gz, .nrrd, .nhdr, .mha, .mhd)");
+}
+
+float otsu_threshold(const Volume& volume) {
+  const IntensityRange range = intensity_range(volume);
+  if (!(range.max > range.min)) throw Error(volume.source, 0, "a constant volume has no threshold");
+  constexpr int bins = 256;
+  std::vector<double> histogram(bins, 0.0);
+  const double scale = (bins - 1) / double(range.max - range.min);
+  for (const float value : volume.values) histogram[std::size_t((value - range.min) * scale)] += 1.0;
+  const double total = double(volume.values.size());
+  double sum_all = 0.0;
+  for (int b = 0; b < bins; ++b) sum_all += b * histogram[std::size_t(b)];
+  double weight_below = 0.0, sum_below = 0.0, best_variance = -1.0;
+  int best = 0;
+  for (int b = 0; b < bins - 1; ++b) {
+    weight_below += histogram[std::size_t(b)];
+    sum_below += b * histogram[std::size_t(b)];
+    const double weight_above = total - weight_below;
+    if (weight_below == 0.0 || weight_above == 0.0) continue;
+    const double mean_below = sum_below / weight_below, mean_above = (sum_all - sum_below) / weight_above;
+    const double variance =
+        weight_below * weight_above * (mean_below - mean_above) * (mean_below - mean_above);
+    if (variance > best_variance) best_variance = variance, best = b;
+  }
+  return range.min + float((best + 0.5) / scale);  // between bin `best` and the next
+}
+
+}  // namespace palpate::volume
