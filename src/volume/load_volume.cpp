@@ -1,13 +1,4 @@
 #include <nifti1_io.h>
-#include <vtkCallbackCommand.h>
-#include <vtkDataArray.h>
-#include <vtkImageData.h>
-#include <vtkImageReader2.h>
-#include <vtkMatrix3x3.h>
-#include <vtkMetaImageReader.h>
-#include <vtkNew.h>
-#include <vtkNrrdReader.h>
-#include <vtkPointData.h>
 
 #include <algorithm>
 #include <cmath>
@@ -16,6 +7,7 @@
 
 #include "palpate/core/error.hpp"
 #include "palpate/volume/volume.hpp"
+#include "text_header.hpp"
 
 namespace palpate::volume {
 namespace {
@@ -117,70 +109,6 @@ Volume load_nifti(const std::filesystem::path& file) {
   return volume;
 }
 
-// VTK prints a reader's complaints (and its executive's) to the terminal: silenced while palpate
-// reads, the reader's first observed message becoming part of palpate's error.
-class VtkMessages {
- public:
-  explicit VtkMessages(vtkAlgorithm& source) : display_(vtkObject::GetGlobalWarningDisplay()) {
-    vtkObject::GlobalWarningDisplayOff();
-    callback_->SetClientData(&first_);
-    callback_->SetCallback([](vtkObject*, unsigned long, void* first, void* text) {
-      auto& kept = *static_cast<std::string*>(first);
-      if (!kept.empty() || !text) return;
-      // "Warning: In file, line N\nvtkNrrdReader (0x...): the message\n\n": keep the message.
-      std::string message = static_cast<const char*>(text);
-      if (const auto colon = message.rfind("): "); colon != std::string::npos) message.erase(0, colon + 3);
-      while (!message.empty() && message.back() == '\n') message.pop_back();
-      if (!message.starts_with("Algorithm ")) kept = message;  // the executive's "returned failure" dump
-    });
-    source.AddObserver(vtkCommand::ErrorEvent, callback_);
-    source.AddObserver(vtkCommand::WarningEvent, callback_);
-  }
-  ~VtkMessages() { vtkObject::SetGlobalWarningDisplay(display_); }
-  std::string first() const { return first_.empty() ? "" : " (" + first_ + ")"; }
-
- private:
-  int display_;
-  std::string first_;
-  vtkNew<vtkCallbackCommand> callback_;
-};
-
-Volume load_with_vtk(vtkImageReader2& reader, const std::filesystem::path& file, const char* format) {
-  const VtkMessages messages(reader);
-  if (!reader.CanReadFile(file.c_str()))
-    throw Error(file, 0, std::string("not a readable ") + format + " file");
-  reader.SetFileName(file.c_str());
-  reader.Update();
-  vtkImageData* image = reader.GetOutput();
-  vtkDataArray* scalars = image ? image->GetPointData()->GetScalars() : nullptr;
-  if (reader.GetErrorCode() != 0 || !scalars)
-    throw Error(file, 0, std::string("could not read the ") + format + " volume" + messages.first());
-  if (scalars->GetNumberOfComponents() != 1) {
-    throw Error(file, 0,
-                "unsupported data type: " + std::to_string(scalars->GetNumberOfComponents()) +
-                    " components per voxel (a scalar volume is needed)");
-  }
-  Volume volume;
-  volume.source = file;
-  int dims[3];
-  image->GetDimensions(dims);
-  volume.size = {dims[0], dims[1], dims[2]};
-  check_size(volume);
-  volume.values.resize(std::size_t(scalars->GetNumberOfTuples()));
-  for (vtkIdType i = 0; i < scalars->GetNumberOfTuples(); ++i)
-    volume.values[std::size_t(i)] = float(scalars->GetTuple1(i));
-  const double* spacing = image->GetSpacing();
-  const double* origin = image->GetOrigin();
-  const vtkMatrix3x3* direction = image->GetDirectionMatrix();
-  for (int column = 0; column < 3; ++column) {
-    for (int row = 0; row < 3; ++row)
-      volume.voxel_to_mm[column][row] = direction->GetElement(row, column) * spacing[column];
-    volume.voxel_to_mm[3][column] = origin[column];
-  }
-  volume.frame = std::string(format) + " origin, spacing and direction";
-  return volume;
-}
-
 }  // namespace
 
 IntensityRange intensity_range(const Volume& volume) noexcept {
@@ -198,14 +126,8 @@ Volume load_volume(const std::filesystem::path& file) {
                 "(dcm2niix, Debian package dcm2niix) and give the .nii.gz");
   }
   if (has_extension(file, {".nii", ".nii.gz"})) return load_nifti(file);
-  if (has_extension(file, {".nrrd", ".nhdr"})) {
-    vtkNew<vtkNrrdReader> reader;
-    return load_with_vtk(*reader, file, "NRRD");
-  }
-  if (has_extension(file, {".mha", ".mhd"})) {
-    vtkNew<vtkMetaImageReader> reader;
-    return load_with_vtk(*reader, file, "MetaImage");
-  }
+  if (has_extension(file, {".nrrd", ".nhdr"})) return load_nrrd(file);
+  if (has_extension(file, {".mha", ".mhd"})) return load_metaimage(file);
   throw Error(file, 0, "not a volume format palpate reads (.nii, .nii.gz, .nrrd, .nhdr, .mha, .mhd)");
 }
 

@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <nifti1_io.h>
+#include <zlib.h>
 
 #include <fstream>
 #include <glm/gtc/matrix_transform.hpp>
@@ -91,6 +92,70 @@ TEST(LoadVolume, NiftiWithoutSformTakesTheQformThenTheVoxelSizes) {
   const Volume bare = load_volume(write_nifti(folder / "bare.nii", {.datatype = DT_UINT8}));
   EXPECT_EQ(bare.frame, "NIfTI voxel sizes (no sform or qform)");
   EXPECT_EQ(glm::dvec3(bare.voxel_to_mm * glm::dvec4(1, 1, 1, 1)), glm::dvec3(2, 3, 4));
+}
+
+// The voxels i + 10 j + 100 k of a 5 x 3 x 4 grid as little-endian int16, compressed as gzip
+// (`gzip_header`) or as a zlib stream.
+std::string packed_voxels(bool compress, bool gzip_header) {
+  std::string raw;
+  for (int k = 0; k < 4; ++k)
+    for (int j = 0; j < 3; ++j)
+      for (int i = 0; i < 5; ++i) {
+        const std::int16_t v = std::int16_t(i + 10 * j + 100 * k);
+        raw.push_back(char(v & 0xff));
+        raw.push_back(char((v >> 8) & 0xff));
+      }
+  if (!compress) return raw;
+  z_stream stream{};
+  deflateInit2(&stream, Z_DEFAULT_COMPRESSION, Z_DEFLATED, gzip_header ? 31 : 15, 8, Z_DEFAULT_STRATEGY);
+  std::string out(raw.size() + 128, '\0');
+  stream.next_in = reinterpret_cast<Bytef*>(raw.data());
+  stream.avail_in = uInt(raw.size());
+  stream.next_out = reinterpret_cast<Bytef*>(out.data());
+  stream.avail_out = uInt(out.size());
+  deflate(&stream, Z_FINISH);
+  out.resize(stream.total_out);
+  deflateEnd(&stream);
+  return out;
+}
+
+// The same grid, its axes turned (i along -y, j along +x, in LPS) and spaced 2, 3, 4 mm, its first voxel
+// at LPS (7, 8, 9): as NRRD (gzip, attached), NRRD (raw, detached) and MetaImage (zlib, LOCAL). In RAS:
+// x and y negated.
+TEST(LoadVolume, NrrdAndMetaImagePlaceTurnedVoxelsInRasMillimetres) {
+  const auto folder = test::scratch_dir("load_volume_text_headers");
+  std::ofstream(folder / "turned.nrrd", std::ios::binary)
+      << "NRRD0004\n# palpate test\ntype: short\ndimension: 3\nspace: left-posterior-superior\nsizes: 5 3 4\n"
+         "space directions: (0,-2,0) (3,0,0) (0,0,4)\nspace origin: (7,8,9)\nencoding: gzip\nendian: "
+         "little\n\n"
+      << packed_voxels(true, true);
+  std::ofstream(folder / "turned.raw", std::ios::binary) << packed_voxels(false, false);
+  std::ofstream(folder / "detached.nhdr", std::ios::binary)
+      << "NRRD0004\ntype: int16\ndimension: 3\nspace: LPS\nsizes: 5 3 4\n"
+         "space directions: (0,-2,0) (3,0,0) (0,0,4)\nspace origin: (7,8,9)\nencoding: raw\nendian: little\n"
+         "data file: turned.raw\n";
+  std::ofstream(folder / "turned.mha", std::ios::binary)
+      << "ObjectType = Image\nNDims = 3\nDimSize = 5 3 4\nElementSpacing = 2 3 4\nOffset = 7 8 9\n"
+         "TransformMatrix = 0 -1 0 1 0 0 0 0 1\nElementType = MET_SHORT\nElementByteOrderMSB = False\n"
+         "CompressedData = True\nElementDataFile = LOCAL\n"
+      << packed_voxels(true, false);
+  for (const char* name : {"turned.nrrd", "detached.nhdr", "turned.mha"}) {
+    SCOPED_TRACE(name);
+    const Volume volume = load_volume(folder / name);
+    EXPECT_EQ(volume.size, glm::ivec3(5, 3, 4));
+    EXPECT_FLOAT_EQ(volume.at(4, 2, 3), 324.0f);
+    EXPECT_FLOAT_EQ(volume.at(1, 0, 2), 201.0f);
+    // Voxel (1, 2, 3): LPS (7, 8, 9) + 1 (0, -2, 0) + 2 (3, 0, 0) + 3 (0, 0, 4) = (13, 6, 21).
+    const glm::dvec3 p = glm::dvec3(volume.voxel_to_mm * glm::dvec4(1, 2, 3, 1));
+    EXPECT_NEAR(p.x, -13.0, 1e-9);
+    EXPECT_NEAR(p.y, -6.0, 1e-9);
+    EXPECT_NEAR(p.z, 21.0, 1e-9);
+  }
+  std::ofstream(folder / "short.nrrd", std::ios::binary)
+      << "NRRD0004\ntype: short\ndimension: 3\nsizes: 5 3 4\nencoding: raw\nendian: little\n\n"
+      << packed_voxels(false, false).substr(0, 50);
+  EXPECT_THAT([&] { load_volume(folder / "short.nrrd"); },
+              testing::ThrowsMessage<Error>(testing::HasSubstr("the voxel data is short: 50 of 120 bytes")));
 }
 
 TEST(LoadVolume, BadVolumesAreErrorsNamingTheFileAndWhatIsWrong) {

@@ -2,11 +2,12 @@
 // A scalar volume (an MRI or CT scan) and where its voxels lie in the scanner's millimetres.
 //
 // load_volume reads NIfTI-1 (.nii, .nii.gz; through niftiio: the scale slope and intercept applied, the
-// sform used where its code is set, else the qform, else the voxel sizes), NRRD (.nrrd, .nhdr) and
-// MetaImage (.mha, .mhd) (through VTK: origin, spacing and direction), and a folder holding one DICOM
-// series (through VTK's DICOM reader: origin and spacing; a folder of several series is an error that
-// lists them). Every error is a palpate::Error naming the file and what was wrong: not a volume, an
-// unsupported data type, a volume with fewer than 2 voxels along an axis.
+// sform used where its code is set, else the qform, else the voxel sizes), NRRD (.nrrd, .nhdr: raw or
+// gzip, attached or detached data, space directions and origin) and MetaImage (.mha, .mhd: raw or
+// compressed, Offset, ElementSpacing and TransformMatrix). Millimetres are RAS, as NIfTI's: NRRD's and
+// MetaImage's LPS coordinates have x and y negated. DICOM series are not read (convert them with
+// dcm2niix). Every error is a palpate::Error naming the file and what was wrong: not a volume, an
+// unsupported data type or encoding, a volume with fewer than 2 voxels along an axis, short data.
 #include <filesystem>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
@@ -18,7 +19,7 @@ namespace palpate::volume {
 struct Volume {
   glm::ivec3 size{0};           // voxels along i, j, k
   std::vector<float> values;    // i fastest, then j, then k; in the scan's units (slope applied)
-  glm::dmat4 voxel_to_mm{1.0};  // voxel centre (i, j, k) to scanner millimetres (right-handed or not)
+  glm::dmat4 voxel_to_mm{1.0};  // voxel centre (i, j, k) to scanner millimetres, RAS (right-handed or not)
   std::string frame;            // where voxel_to_mm came from, e.g. "NIfTI sform (code 4)"
   std::filesystem::path source;
 
