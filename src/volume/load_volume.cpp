@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <map>
 #include <memory>
 
 #include "palpate/core/error.hpp"
 #include "palpate/volume/volume.hpp"
 #include "text_header.hpp"
+#include "voxel_data.hpp"
 
 namespace palpate::volume {
 namespace {
@@ -29,13 +31,6 @@ void check_size(const Volume& volume) {
   }
 }
 
-template <class T>
-void convert(const void* data, std::size_t count, float slope, float intercept, std::vector<float>& out) {
-  const T* typed = static_cast<const T*>(data);
-  out.resize(count);
-  for (std::size_t i = 0; i < count; ++i) out[i] = float(double(typed[i]) * slope + intercept);
-}
-
 Volume load_nifti(const std::filesystem::path& file) {
   nifti_set_debug_level(0);  // its messages would go to stderr; ours name the file
   const std::unique_ptr<nifti_image, decltype(&nifti_image_free)> image(nifti_image_read(file.c_str(), 1),
@@ -51,42 +46,20 @@ Volume load_nifti(const std::filesystem::path& file) {
   const bool scaled =
       image->scl_slope != 0.0f && std::isfinite(image->scl_slope) && std::isfinite(image->scl_inter);
   const float slope = scaled ? image->scl_slope : 1.0f, intercept = scaled ? image->scl_inter : 0.0f;
-  switch (image->datatype) {  // only the first volume of a series (nt > 1)
-    case DT_UINT8:
-      convert<std::uint8_t>(image->data, count, slope, intercept, volume.values);
-      break;
-    case DT_INT8:
-      convert<std::int8_t>(image->data, count, slope, intercept, volume.values);
-      break;
-    case DT_INT16:
-      convert<std::int16_t>(image->data, count, slope, intercept, volume.values);
-      break;
-    case DT_UINT16:
-      convert<std::uint16_t>(image->data, count, slope, intercept, volume.values);
-      break;
-    case DT_INT32:
-      convert<std::int32_t>(image->data, count, slope, intercept, volume.values);
-      break;
-    case DT_UINT32:
-      convert<std::uint32_t>(image->data, count, slope, intercept, volume.values);
-      break;
-    case DT_INT64:
-      convert<std::int64_t>(image->data, count, slope, intercept, volume.values);
-      break;
-    case DT_UINT64:
-      convert<std::uint64_t>(image->data, count, slope, intercept, volume.values);
-      break;
-    case DT_FLOAT32:
-      convert<float>(image->data, count, slope, intercept, volume.values);
-      break;
-    case DT_FLOAT64:
-      convert<double>(image->data, count, slope, intercept, volume.values);
-      break;
-    default:
-      throw Error(file, 0,
-                  std::string("unsupported data type ") + nifti_datatype_string(image->datatype) +
-                      " (a scalar volume is needed: integers or floats)");
+  static const std::map<int, VoxelType> types = {
+      {DT_UINT8, VoxelType::uint8},    {DT_INT8, VoxelType::int8},     {DT_INT16, VoxelType::int16},
+      {DT_UINT16, VoxelType::uint16},  {DT_INT32, VoxelType::int32},   {DT_UINT32, VoxelType::uint32},
+      {DT_INT64, VoxelType::int64},    {DT_UINT64, VoxelType::uint64}, {DT_FLOAT32, VoxelType::float32},
+      {DT_FLOAT64, VoxelType::float64}};
+  const auto type = types.find(image->datatype);
+  if (type == types.end()) {
+    throw Error(file, 0,
+                std::string("unsupported data type ") + nifti_datatype_string(image->datatype) +
+                    " (a scalar volume is needed: integers or floats)");
   }
+  // niftiio has already swapped the bytes to this machine's order. Only the first volume of a series.
+  volume.values = to_floats(image->data, count, type->second, false);
+  for (float& value : volume.values) value = value * slope + intercept;
   const auto to_glm = [](const mat44& m) {
     glm::dmat4 out(1.0);
     for (int row = 0; row < 4; ++row)

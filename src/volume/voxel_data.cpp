@@ -67,6 +67,46 @@ std::vector<unsigned char> inflate_all(const std::vector<unsigned char>& packed,
 
 }  // namespace
 
+std::vector<float> to_floats(const void* data, std::size_t count, VoxelType type, bool swap) {
+  const auto* bytes = static_cast<const unsigned char*>(data);
+  std::vector<float> values(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    switch (type) {
+      case VoxelType::int8:
+        values[i] = value_at<std::int8_t>(bytes, i, swap);
+        break;
+      case VoxelType::uint8:
+        values[i] = value_at<std::uint8_t>(bytes, i, swap);
+        break;
+      case VoxelType::int16:
+        values[i] = value_at<std::int16_t>(bytes, i, swap);
+        break;
+      case VoxelType::uint16:
+        values[i] = value_at<std::uint16_t>(bytes, i, swap);
+        break;
+      case VoxelType::int32:
+        values[i] = value_at<std::int32_t>(bytes, i, swap);
+        break;
+      case VoxelType::uint32:
+        values[i] = value_at<std::uint32_t>(bytes, i, swap);
+        break;
+      case VoxelType::int64:
+        values[i] = value_at<std::int64_t>(bytes, i, swap);
+        break;
+      case VoxelType::uint64:
+        values[i] = value_at<std::uint64_t>(bytes, i, swap);
+        break;
+      case VoxelType::float32:
+        values[i] = value_at<float>(bytes, i, swap);
+        break;
+      case VoxelType::float64:
+        values[i] = value_at<double>(bytes, i, swap);
+        break;
+    }
+  }
+  return values;
+}
+
 std::vector<float> read_voxels(const VoxelData& data, std::size_t count,
                                const std::filesystem::path& header) {
   std::ifstream in(data.file, std::ios::binary);
@@ -81,42 +121,7 @@ std::vector<float> read_voxels(const VoxelData& data, std::size_t count,
                     " bytes");
   }
   const bool swap = data.big_endian != (std::endian::native == std::endian::big) && size_of(data.type) > 1;
-  std::vector<float> values(count);
-  for (std::size_t i = 0; i < count; ++i) {
-    switch (data.type) {
-      case VoxelType::int8:
-        values[i] = value_at<std::int8_t>(bytes.data(), i, swap);
-        break;
-      case VoxelType::uint8:
-        values[i] = value_at<std::uint8_t>(bytes.data(), i, swap);
-        break;
-      case VoxelType::int16:
-        values[i] = value_at<std::int16_t>(bytes.data(), i, swap);
-        break;
-      case VoxelType::uint16:
-        values[i] = value_at<std::uint16_t>(bytes.data(), i, swap);
-        break;
-      case VoxelType::int32:
-        values[i] = value_at<std::int32_t>(bytes.data(), i, swap);
-        break;
-      case VoxelType::uint32:
-        values[i] = value_at<std::uint32_t>(bytes.data(), i, swap);
-        break;
-      case VoxelType::int64:
-        values[i] = value_at<std::int64_t>(bytes.data(), i, swap);
-        break;
-      case VoxelType::uint64:
-        values[i] = value_at<std::uint64_t>(bytes.data(), i, swap);
-        break;
-      case VoxelType::float32:
-        values[i] = value_at<float>(bytes.data(), i, swap);
-        break;
-      case VoxelType::float64:
-        values[i] = value_at<double>(bytes.data(), i, swap);
-        break;
-    }
-  }
-  return values;
+  return to_floats(bytes.data(), count, data.type, swap);
 }
 
 glm::dmat4 lps_to_ras(const glm::dmat3& axes_lps, const glm::dvec3& origin_lps) {

@@ -20,6 +20,9 @@ struct VoxelData {
   VoxelType type = VoxelType::uint8;
 };
 
+// `count` values of `type` stored at `bytes` as floats, each byte-swapped first when `swap`.
+std::vector<float> to_floats(const void* bytes, std::size_t count, VoxelType type, bool swap);
+
 // `count` voxels as floats. Throws palpate::Error naming `header` when the file is missing or short.
 std::vector<float> read_voxels(const VoxelData& data, std::size_t count, const std::filesystem::path& header);
 
