@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <fstream>
 #include <map>
 #include <memory>
 
+#include "load_dicom.hpp"
 #include "palpate/core/error.hpp"
 #include "palpate/volume/volume.hpp"
 #include "text_header.hpp"
@@ -20,6 +22,13 @@ bool has_extension(const std::filesystem::path& file, std::initializer_list<cons
   return std::any_of(extensions.begin(), extensions.end(), [&](const char* extension) {
     return name.size() > std::string_view(extension).size() && name.ends_with(extension);
   });
+}
+
+// DICOM Part 10 files start with a 128-byte preamble and "DICM", whatever their names (often none).
+bool is_dicom_file(const std::filesystem::path& file) {
+  char magic[132] = {};
+  std::ifstream(file, std::ios::binary).read(magic, sizeof magic);
+  return std::string_view(magic + 128, 4) == "DICM";
 }
 
 void check_size(const Volume& volume) {
@@ -93,15 +102,16 @@ IntensityRange intensity_range(const Volume& volume) noexcept {
 Volume load_volume(const std::filesystem::path& file) {
   std::error_code error;
   if (!std::filesystem::exists(file, error)) throw Error(file, 0, "no such file or folder");
-  if (std::filesystem::is_directory(file, error)) {
-    throw Error(file, 0,
-                "a folder: DICOM series are not read yet; convert the series to NIfTI first "
-                "(dcm2niix, Debian package dcm2niix) and give the .nii.gz");
-  }
+  if (std::filesystem::is_directory(file, error)) return load_dicom(file);
   if (has_extension(file, {".nii", ".nii.gz"})) return load_nifti(file);
   if (has_extension(file, {".nrrd", ".nhdr"})) return load_nrrd(file);
   if (has_extension(file, {".mha", ".mhd"})) return load_metaimage(file);
-  throw Error(file, 0, "not a volume format palpate reads (.nii, .nii.gz, .nrrd, .nhdr, .mha, .mhd)");
+  if (has_extension(file, {".dcm"}) || is_dicom_file(file))
+    return load_dicom(file.parent_path());  // its series
+  throw Error(
+      file, 0,
+      "not a volume format palpate reads (.nii, .nii.gz, .nrrd, .nhdr, .mha, .mhd, or a DICOM series' "
+      "folder)");
 }
 
 float otsu_threshold(const Volume& volume) {

@@ -172,9 +172,9 @@ TEST(LoadVolume, BadVolumesAreErrorsNamingTheFileAndWhatIsWrong) {
   fails_with(write_nifti(folder / "flat.nii", {.nz = 1}), "not a volume: 5 x 3 x 1 voxels");
   fails_with(write_nifti(folder / "complex.nii", {.datatype = DT_COMPLEX64}),
              "unsupported data type COMPLEX64");
-  std::ofstream(folder / "scan.dcm") << "x";
-  fails_with(folder / "scan.dcm", "not a volume format palpate reads");
-  fails_with(folder, "DICOM series are not read yet");
+  std::ofstream(folder / "scan.mnc") << "x";
+  fails_with(folder / "scan.mnc", "not a volume format palpate reads");
+  fails_with(folder, "a folder without DICOM files");
   std::ofstream(folder / "broken.nrrd") << "NRRD0004\ntype: banana\n";
   fails_with(folder / "broken.nrrd", "NRRD");
 }

@@ -5,9 +5,12 @@
 // sform used where its code is set, else the qform, else the voxel sizes), NRRD (.nrrd, .nhdr: raw or
 // gzip, attached or detached data, space directions and origin) and MetaImage (.mha, .mhd: raw or
 // compressed, Offset, ElementSpacing and TransformMatrix). Millimetres are RAS, as NIfTI's: NRRD's and
-// MetaImage's LPS coordinates have x and y negated. DICOM series are not read (convert them with
-// dcm2niix). Every error is a palpate::Error naming the file and what was wrong: not a volume, an
-// unsupported data type or encoding, a volume with fewer than 2 voxels along an axis, short data.
+// MetaImage's LPS coordinates have x and y negated) and DICOM series (a folder, or a .dcm file in it,
+// through GDCM: slices ordered by Image Position along the normal of Image Orientation, rescale slope and
+// intercept applied per slice, LPS to RAS; or one multi-frame file). Every error is a palpate::Error naming
+// the file and what was wrong: not a volume, an unsupported data type or encoding, a volume with fewer than 2
+// voxels along an axis, short data; for DICOM, a folder holding several series (they are listed) or a tilted,
+// gapped or duplicated slice.
 #include <filesystem>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
