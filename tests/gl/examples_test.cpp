@@ -148,6 +148,7 @@ TEST(Examples, EachHostDrawsAndDentsLikeTheCpuReference) {
   check("core33", true);     // OpenGL 3.3 core, GLFW, its own epoxy calls and framebuffer, world mm
   check("legacy", true);     // OpenGL 2.1, GLEW, GLSL 1.20, eye space in metres, doubles
   check("vtk", true, true);  // VTK 9.1: the actor's own shaders, VTK's lighting
+  check("coin", true);       // Coin3D 4.0: a shader node in the scene graph, GLSL 1.20, Coin's lights
 }
 
 }  // namespace
