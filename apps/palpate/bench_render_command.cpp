@@ -4,7 +4,8 @@
 // The variants of one mesh run interleaved, in short slices round after round, so that a noisy machine
 // slows them alike; each frame ends with glFinish, so a frame's time is the time until its pixels are
 // there. GPU time comes from timer queries, except on software rasterizers, whose queries do not time
-// the rasterizer threads (gpu_ms is null there).
+// the rasterizer threads (gpu_ms is null there), and in the toolkits' rows (--toolkits: VTK and Coin3D
+// drawing the Table I meshes plainly and with palpate's shaders, each against its own plain drawing).
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -22,8 +23,10 @@
 #include <string>
 #include <vector>
 
+#include "bench_toolkits.hpp"
 #include "commands.hpp"
 #include "format.hpp"
+#include "interleaved.hpp"
 #include "palpate/core/error.hpp"
 #include "palpate/core/scene_file.hpp"
 #include "palpate/core/shapes.hpp"
@@ -40,7 +43,8 @@ struct BenchOptions {
   double seconds = 0.0;  // per variant and mesh; 0: 2 s with --quick, else 3 s
   int width = 1280, height = 1024;
   std::string json;
-  std::string frames;  // folder for one PNG of each deformed mesh
+  std::string frames;     // folder for one PNG of each deformed mesh
+  bool toolkits = false;  // also VTK and Coin3D drawing the meshes, plain and deformed
 };
 
 struct Variant {
@@ -105,6 +109,7 @@ std::vector<BenchMesh> bench_meshes(bool quick) {
 struct Camera {
   glm::mat4 view, projection;
   glm::vec3 eye;
+  float near_mm, far_mm;
 };
 
 // The whole scene in view, seen from behind (-y; the face looks along +y) and a little above.
@@ -120,7 +125,8 @@ Camera frame_scene(const Scene& scene, int width, int height) {
   const float distance = radius / std::sin(0.5f * fov) * 1.05f;
   const glm::vec3 eye = center + distance * glm::normalize(glm::vec3(0.15f, -1.0f, 0.35f));
   return {glm::lookAt(eye, center, glm::vec3(0, 0, 1)),
-          glm::perspective(fov, float(width) / float(height), 0.05f * distance, 4.0f * distance), eye};
+          glm::perspective(fov, float(width) / float(height), 0.05f * distance, 4.0f * distance), eye,
+          0.05f * distance, 4.0f * distance};
 }
 
 // A dent on the visible surface: the vertex of the first (outermost) object that reaches furthest
@@ -153,20 +159,10 @@ bool timer_queries_trustworthy(const std::string& renderer) {
   return true;
 }
 
-double process_cpu_seconds() {
-  timespec t{};
-  clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &t);
-  return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
-}
-
-struct Tally {
-  int frames = 0;
-  double wall_s = 0.0, cpu_s = 0.0, gpu_ns = 0.0;
-};
-
 struct Row {
   std::string mesh;
   std::size_t vertices = 0, triangles = 0;
+  std::string toolkit;  // who draws: palpate's renderer, or VTK or Coin3D with palpate's shaders
   std::string variant;
   double fps = 0.0, cpu_ms = 0.0;
   std::optional<double> gpu_ms;
@@ -226,57 +222,64 @@ int bench_render(const BenchOptions& options) {
       gl::save_png(file, options.width, options.height, target.read_rgba8());
     }
 
-    std::vector<Tally> tallies(std::size(variants));
-    for (int round = 0; round < rounds; ++round) {
-      for (std::size_t v = 0; v < std::size(variants); ++v) {
-        Tally& tally = tallies[v];
-        const auto start = std::chrono::steady_clock::now();
-        const double cpu_start = process_cpu_seconds();
-        double elapsed = 0.0;
-        do {
-          if (timed) glBeginQuery(GL_TIME_ELAPSED, query);
-          frame(variants[v]);
-          if (timed) glEndQuery(GL_TIME_ELAPSED);
-          glFinish();
-          if (timed) {
-            GLuint64 ns = 0;
-            glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
-            tally.gpu_ns += double(ns);
-          }
-          ++tally.frames;
-          elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-        } while (elapsed < seconds / rounds);
-        tally.wall_s += elapsed;
-        tally.cpu_s += process_cpu_seconds() - cpu_start;
-      }
+    std::vector<double> gpu_ns(std::size(variants), 0.0);
+    std::vector<std::function<void()>> frames;
+    for (std::size_t v = 0; v < std::size(variants); ++v) {
+      frames.push_back([&, v] {
+        if (timed) glBeginQuery(GL_TIME_ELAPSED, query);
+        frame(variants[v]);
+        if (timed) glEndQuery(GL_TIME_ELAPSED);
+        glFinish();
+        if (timed) {
+          GLuint64 ns = 0;
+          glGetQueryObjectui64v(query, GL_QUERY_RESULT, &ns);
+          gpu_ns[v] += double(ns);
+        }
+      });
     }
+    const std::vector<Tally> tallies = measure_interleaved(frames, seconds, rounds);
     for (std::size_t v = 0; v < std::size(variants); ++v) {
       const Tally& tally = tallies[v];
       Row row{bench_mesh.name,
               vertices,
               triangles,
+              "palpate",
               variants[v].name,
               tally.frames / tally.wall_s,
               1000.0 * tally.cpu_s / tally.frames,
               std::nullopt,
               tally.frames};
-      if (timed) row.gpu_ms = 1e-6 * tally.gpu_ns / tally.frames;
+      if (timed) row.gpu_ms = 1e-6 * gpu_ns[v] / tally.frames;
       rows.push_back(row);
+    }
+    if (options.toolkits) {
+      const Scene scene = bench_mesh.make();
+      ToolkitView view{camera.eye,          world_bounds(scene).center_mm(),
+                       glm::radians(40.0f), camera.near_mm,
+                       camera.far_mm,       options.width,
+                       options.height};
+      context.release();
+      for (const ToolkitTally& t : bench_toolkits(scene, view, contact, seconds, rounds)) {
+        rows.push_back({bench_mesh.name, vertices, triangles, t.toolkit, t.variant,
+                        t.tally.frames / t.tally.wall_s, 1000.0 * t.tally.cpu_s / t.tally.frames,
+                        std::nullopt, t.tally.frames});
+      }
+      context.make_current();
     }
   }
   glDeleteQueries(1, &query);
 
-  std::printf("\n%-6s %11s %11s  %-16s %9s %9s %9s %7s  %s\n", "mesh", "vertices", "triangles", "variant",
-              "fps", "gpu ms", "cpu ms", "frames", "vs plain");
+  std::printf("\n%-6s %11s %11s  %-8s %-16s %9s %9s %9s %7s  %s\n", "mesh", "vertices", "triangles",
+              "toolkit", "variant", "fps", "gpu ms", "cpu ms", "frames", "vs plain");
   for (const Row& row : rows) {
     const auto plain = std::find_if(rows.begin(), rows.end(), [&](const Row& r) {
-      return r.mesh == row.mesh && r.variant == std::string("plain");
+      return r.mesh == row.mesh && r.toolkit == row.toolkit && r.variant == std::string("plain");
     });
     char gpu[16] = "null";
     if (row.gpu_ms) std::snprintf(gpu, sizeof gpu, "%.3f", *row.gpu_ms);
-    std::printf("%-6s %11s %11s  %-16s %9.1f %9s %9.2f %7d  %+.1f%%\n", row.mesh.c_str(),
+    std::printf("%-6s %11s %11s  %-8s %-16s %9.1f %9s %9.2f %7d  %+.1f%%\n", row.mesh.c_str(),
                 with_thousands(row.vertices).c_str(), with_thousands(row.triangles).c_str(),
-                row.variant.c_str(), row.fps, gpu, row.cpu_ms, row.frames,
+                row.toolkit.c_str(), row.variant.c_str(), row.fps, gpu, row.cpu_ms, row.frames,
                 100.0 * (plain->fps / row.fps - 1.0));
   }
   std::printf("(vs plain: extra time per frame; cpu ms: process CPU time per frame, all threads)\n");
@@ -293,6 +296,7 @@ int bench_render(const BenchOptions& options) {
       out["rows"].push_back({{"mesh", row.mesh},
                              {"vertices", row.vertices},
                              {"triangles", row.triangles},
+                             {"toolkit", row.toolkit},
                              {"variant", row.variant},
                              {"fps", row.fps},
                              {"gpu_ms", row.gpu_ms ? nlohmann::json(*row.gpu_ms) : nlohmann::json(nullptr)},
@@ -319,6 +323,9 @@ void add_bench_render_command(CLI::App& app) {
   render->add_option("--width", options->width, "Framebuffer width")->check(CLI::Range(16, 16384));
   render->add_option("--height", options->height, "Framebuffer height")->check(CLI::Range(16, 16384));
   render->add_option("--json", options->json, "Write the results as JSON to this file");
+  render->add_flag("--toolkits", options->toolkits,
+                   "Also VTK and Coin3D drawing each Table I mesh, plain and with palpate's shaders "
+                   "(VTK needs an X display: xvfb-run -a palpate bench render --toolkits)");
   render->add_option("--frames", options->frames,
                      "Save one deformed frame of each mesh as PNG into this folder");
   on_selected(render, [options] { return bench_render(*options); });

@@ -16,33 +16,11 @@ namespace {
 
 constexpr int max_lights = 8;  // OpenGL's fixed-function lights
 
-// The shapes' own coordinates (gl_Vertex) for the deformation; eye space for the lighting. gl_Position
-// is ftransform() plus the displacement taken to clip space, so that away from the dents it is the
-// fixed function's own to the bit.
-constexpr const char* vertex_main = R"glsl(
-varying vec3 palpate_rest;    // the shapes' coordinates
-varying vec3 palpate_normal;
-void main() {
-  palpate_rest = gl_Vertex.xyz / gl_Vertex.w;
-  palpate_normal = normalize(gl_Normal);
-  vec3 moved = palpate_displace(palpate_rest, palpate_normal);
-  gl_Position = ftransform() + gl_ModelViewProjectionMatrix * vec4(moved - palpate_rest, 0.0);
-  gl_FrontColor = gl_Color;  // Coin sends the diffuse colour (SoMaterial or per vertex) as glColor
-}
-)glsl";
-
-// OpenGL 2.1's lighting equation (section 2.14.1) per fragment, with an infinitely distant viewer as
-// Coin leaves it: emission, the light model's ambient, and per light its ambient, diffuse (the vertex
-// colour, as with Coin's colour material) and Blinn specular, attenuated and within spot cones.
-constexpr const char* fragment_main = R"glsl(
-varying vec3 palpate_rest;
-varying vec3 palpate_normal;
-void main() {
-  vec3 position = palpate_rest;
-  vec3 normal = palpate_normal;
-  palpate_deform_fragment(position, normal);
-  vec3 n = normalize(gl_NormalMatrix * normal);
-  vec3 eye = (gl_ModelViewMatrix * vec4(position, 1.0)).xyz;
+// OpenGL 2.1's lighting equation (section 2.14.1) with an infinitely distant viewer, as Coin leaves it:
+// emission, the light model's ambient, and per light its ambient, diffuse (the vertex colour, as with
+// Coin's colour material) and Blinn specular, attenuated and within spot cones. Eye space.
+constexpr const char* lighting = R"glsl(
+vec3 palpate_light(vec3 eye, vec3 n, vec3 diffuse_colour) {
   vec3 colour = gl_FrontMaterial.emission.rgb + gl_FrontMaterial.ambient.rgb * gl_LightModel.ambient.rgb;
   for (int i = 0; i < PALPATE_LIGHTS; ++i) {
     vec4 light = gl_LightSource[i].position;
@@ -61,9 +39,53 @@ void main() {
     float specular = diffuse > 0.0 ? pow(max(dot(n, normalize(to_light + vec3(0.0, 0.0, 1.0))), 0.0),
                                          gl_FrontMaterial.shininess) : 0.0;
     colour += factor * (gl_FrontMaterial.ambient.rgb * gl_LightSource[i].ambient.rgb +
-                        diffuse * gl_Color.rgb * gl_LightSource[i].diffuse.rgb +
+                        diffuse * diffuse_colour * gl_LightSource[i].diffuse.rgb +
                         specular * gl_FrontMaterial.specular.rgb * gl_LightSource[i].specular.rgb);
   }
+  return colour;
+}
+)glsl";
+
+// The deformation in the shapes' own coordinates (gl_Vertex); lighting in eye space. gl_Position is
+// ftransform() plus the displacement taken to clip space, so that away from the dents it is the fixed
+// function's own to the bit. Per vertex (Coin's own shading), each vertex is lit with the true normal
+// of the deformed surface there. Per fragment, the vertex colour serves the fragments no dent reaches
+// and the others are lit with the tilted normal of the fragment itself.
+constexpr const char* vertex_main = R"glsl(
+varying vec3 palpate_rest;  // the shapes' coordinates
+varying vec3 palpate_normal;
+varying vec3 palpate_vertex_lit;
+void main() {
+  palpate_rest = gl_Vertex.xyz / gl_Vertex.w;
+  palpate_normal = normalize(gl_Normal);
+  vec3 moved = palpate_displace(palpate_rest, palpate_normal);
+  gl_Position = ftransform() + gl_ModelViewProjectionMatrix * vec4(moved - palpate_rest, 0.0);
+  vec3 position = palpate_rest;
+  vec3 normal = palpate_normal;
+#if !PALPATE_PER_FRAGMENT
+  palpate_deform_fragment(position, normal);
+#endif
+  palpate_vertex_lit = palpate_light((gl_ModelViewMatrix * vec4(position, 1.0)).xyz,
+                                     normalize(gl_NormalMatrix * normal), gl_Color.rgb);
+  gl_FrontColor = gl_Color;  // Coin sends the diffuse colour (SoMaterial or per vertex) as glColor
+}
+)glsl";
+
+constexpr const char* fragment_main = R"glsl(
+varying vec3 palpate_rest;
+varying vec3 palpate_normal;
+varying vec3 palpate_vertex_lit;
+void main() {
+  vec3 colour = palpate_vertex_lit;
+#if PALPATE_PER_FRAGMENT
+  if (palpate_reaches(palpate_rest)) {
+    vec3 position = palpate_rest;
+    vec3 normal = palpate_normal;
+    palpate_deform_fragment(position, normal);
+    colour = palpate_light((gl_ModelViewMatrix * vec4(position, 1.0)).xyz, normalize(gl_NormalMatrix * normal),
+                           gl_Color.rgb);
+  }
+#endif
   gl_FragColor = vec4(colour, gl_Color.a);
 }
 )glsl";
@@ -85,8 +107,9 @@ DeformShader::DeformShader(DeformShaderParams params) : state_(std::make_unique<
     throw Error("DeformShader: lights must be 1.." + std::to_string(max_lights));
   if (!SoDB::isInitialized()) SoDB::init();
   state_->slots = params.dent_slots;
-  const std::string header = "#version 120\n#define PALPATE_LIGHTS " + std::to_string(params.lights) + "\n" +
-                             gl::deform_glsl(gl::GlslDialect::uniform_arrays, params.dent_slots);
+  const std::string header = "#version 120\n#define PALPATE_LIGHTS " + std::to_string(params.lights) +
+                             "\n#define PALPATE_PER_FRAGMENT " + (params.per_fragment ? "1" : "0") + "\n" +
+                             gl::deform_glsl(gl::GlslDialect::uniform_arrays, params.dent_slots) + lighting;
 
   auto* vertex = new SoVertexShader;
   vertex->sourceType = SoShaderObject::GLSL_PROGRAM;

@@ -80,6 +80,19 @@ vec3 palpate_perturb_normal(vec3 normal, vec3 rest_position) {
   palpate_deform_fragment(rest_position, normal);
   return normal;
 }
+
+// Whether a dent reaches `position` (the undeformed one) within its 4 sigma: a shader branches on it to
+// skip the dents' work where nothing is dented (on a software rasterizer a block of fragments that all
+// branch alike skips it).
+bool palpate_reaches(vec3 position) {
+  bool reaches = false;
+  for (int i = 0; i < PALPATE_DENT_SLOTS; ++i) {
+    if (i >= palpate_dent_count) break;
+    vec3 offset = position - palpate_dent_center_depth[i].xyz;
+    reaches = reaches || dot(offset, offset) < palpate_dent_shape[i].x;
+  }
+  return reaches;
+}
 )glsl";
 
 bool is_es(std::string_view shader_source) noexcept {

@@ -158,6 +158,10 @@ void HeadlessContext::make_current() const {
   }
 }
 
+void HeadlessContext::release() const noexcept {
+  eglMakeCurrent(state_->display, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+}
+
 const std::string& HeadlessContext::platform() const noexcept {
   return state_->platform;
 }

@@ -43,7 +43,7 @@ constexpr const char* vertex_position = R"glsl(
 )glsl";
 
 constexpr const char* fragment_normal = R"glsl(//VTK::Normal::Impl
-  normalVCVSOutput = palpate_perturb_normal(normalVCVSOutput, palpateRestVC);
+  if (palpate_reaches(palpateRestVC)) normalVCVSOutput = palpate_perturb_normal(normalVCVSOutput, palpateRestVC);
 )glsl";
 
 glm::mat4 to_glm(vtkMatrix4x4* m) {  // VTK's matrices are row-major

@@ -3,7 +3,7 @@
 // with GLSL 1.20 vertex and fragment shaders that displace the shapes under it and tilt their normals,
 // fed through SoShaderParameter fields. The shaders light as Coin's fixed function does (the scene's
 // SoMaterial, per-vertex colours, and its directional, point and spot lights through
-// gl_LightSource), per fragment, so the dent reads under the scene's own lights.
+// gl_LightSource), per vertex or per fragment, so the dent reads under the scene's own lights.
 //
 //     palpate::coin::DeformShader dent;                  // SoDB::init() first (done here if not)
 //     separator->insertChild(dent.node(), 0);            // before the shapes it deforms
@@ -28,6 +28,10 @@ namespace palpate::coin {
 struct DeformShaderParams {
   int dent_slots = 1;  // dents at most per render, 1..max_dents (each costs every fragment on llvmpipe)
   int lights = 1;      // how many of the scene's lights to light with (Coin numbers them from 0 in order)
+  // Lighting: per vertex as Coin's fixed function lights (each vertex with the true normal of the
+  // deformed surface), or per fragment within the dents' reach (the normal tilted at each fragment: a
+  // smooth dent on a coarse mesh too, at the cost of every fragment on a software rasterizer).
+  bool per_fragment = false;
 };
 
 class DeformShader {

@@ -42,11 +42,12 @@ GlslDialect dialect_of(std::string_view shader_source) noexcept;
 
 // The GLSL source, without a #version line, serving up to `dent_slots` dents (1..max_dents): the dent
 // data (`PalpateDeform` block or `palpate_dent_*` arrays), `vec3 palpate_displace(vec3 position,
-// vec3 direction)`, `vec3 palpate_perturb_normal(vec3 normal, vec3 rest_position)` and
-// `void palpate_deform_fragment(inout vec3 position, inout vec3 normal)`; each compiles in either
-// stage. The loops run over a compile-time number of slots (the data is read at constant offsets):
-// on a GPU an unused slot costs a uniform branch, on a software rasterizer (llvmpipe) a whole dent, so
-// ask for no more than needed. Allocates.
+// vec3 direction)`, `vec3 palpate_perturb_normal(vec3 normal, vec3 rest_position)`,
+// `void palpate_deform_fragment(inout vec3 position, inout vec3 normal)` and `bool
+// palpate_reaches(vec3 rest_position)` (to branch around the rest where no dent reaches); each compiles in
+// either stage. The loops run over a compile-time number of slots (the data is read at constant offsets): on
+// a GPU an unused slot costs a uniform branch, on a software rasterizer (llvmpipe) a whole dent, so ask for
+// no more than needed. Allocates.
 std::string deform_glsl(GlslDialect dialect, int dent_slots = max_dents);
 
 // `shader_source` with deform_glsl() inserted after its `#version` line and any `#extension` and

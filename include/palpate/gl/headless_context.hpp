@@ -25,6 +25,9 @@ class HeadlessContext {
 
   // Makes the context current on the calling thread (throws palpate::Error on failure).
   void make_current() const;
+  // Leaves no EGL context current on the calling thread, so that a GLX one (a toolkit's window) may be
+  // made current there: a thread has one current context of one API at a time.
+  void release() const noexcept;
   // How it was made, e.g. "EGL device 0 (EGL_MESA_device_software)" or "EGL Mesa surfaceless".
   const std::string& platform() const noexcept;
 
