@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 
 #include "run_command.hpp"
@@ -70,6 +71,28 @@ TEST(BenchCommand, RenderAtItsSmallestComparesEveryVariant) {
     EXPECT_GT(row["cpu_ms"].get<double>(), 0.0);
     EXPECT_TRUE(row.contains("gpu_ms"));
   }
+}
+
+// The toolkits' rows: Coin3D on palpate's headless context, VTK in an X window (under Xvfb here).
+TEST(BenchCommand, RenderWithToolkitsComparesEachToolkitWithItsOwnPlainDrawing) {
+  const auto json = test::scratch_dir("bench_render_toolkits") / "render.json";
+  const auto result =
+      test::run_command("xvfb-run -a " + cli +
+                        " bench render --quick --toolkits --seconds 0.2 --width 160 --height 128 "
+                        "--json " +
+                        json.string());
+  ASSERT_EQ(result.exit_status, 0) << result.both();
+  std::ifstream file(json);
+  const nlohmann::json report = nlohmann::json::parse(file);
+  std::map<std::string, int> rows_per_toolkit;
+  for (const auto& row : report["rows"]) {
+    rows_per_toolkit[row["toolkit"].get<std::string>() + " " + row["variant"].get<std::string>()] += 1;
+    EXPECT_GT(row["fps"].get<double>(), 0.0);
+    EXPECT_GT(row["frames"].get<int>(), 0);
+  }
+  for (const char* variant : {"palpate deform", "palpate plain", "coin plain", "coin deform",
+                              "coin deform-per-fragment", "vtk plain", "vtk deform"})
+    EXPECT_EQ(rows_per_toolkit[variant], 3) << variant << ": one row per Table I mesh";
 }
 
 TEST(BenchCommand, Table1AtItsSmallestGivesThePapersRows) {
