@@ -60,7 +60,9 @@ int mesh_from_volume(const FromVolumeOptions& options) {
   const double read_seconds = seconds_since(start);
   const volume::IntensityRange range = volume::intensity_range(scan);
   volume::IsosurfaceParams params;
-  params.iso = options.iso ? *options.iso : volume::otsu_threshold(scan);
+  params.iso = options.iso      ? *options.iso
+               : options.closed ? volume::air_threshold(scan)
+                                : volume::otsu_threshold(scan);
   params.smooth_voxels = options.smooth_voxels;
   params.largest = options.largest;
   params.closed = options.closed;

@@ -54,7 +54,7 @@ SceneObject build(const ObjectRecipe& recipe, const AnatomyParams& params, Anato
     iso = *recipe.iso;
   } else {
     volume = load_volume(recipe.scan);
-    iso = otsu_threshold(*volume);
+    iso = recipe.closed ? air_threshold(*volume) : otsu_threshold(*volume);
     report.iso_from_histogram = true;
   }
   report.iso = iso;

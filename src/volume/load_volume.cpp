@@ -114,14 +114,19 @@ Volume load_volume(const std::filesystem::path& file) {
       "folder)");
 }
 
-float otsu_threshold(const Volume& volume) {
-  const IntensityRange range = intensity_range(volume);
+float otsu_threshold(const Volume& volume, float below) {
+  IntensityRange range = intensity_range(volume);
+  range.max = std::min(range.max, below);
   if (!(range.max > range.min)) throw Error(volume.source, 0, "a constant volume has no threshold");
   constexpr int bins = 256;
   std::vector<double> histogram(bins, 0.0);
   const double scale = (bins - 1) / double(range.max - range.min);
-  for (const float value : volume.values) histogram[std::size_t((value - range.min) * scale)] += 1.0;
-  const double total = double(volume.values.size());
+  double total = 0.0;
+  for (const float value : volume.values) {
+    if (value > range.max) continue;
+    histogram[std::size_t((value - range.min) * scale)] += 1.0;
+    total += 1.0;
+  }
   double sum_all = 0.0;
   for (int b = 0; b < bins; ++b) sum_all += b * histogram[std::size_t(b)];
   double weight_below = 0.0, sum_below = 0.0, best_variance = -1.0;
@@ -137,6 +142,10 @@ float otsu_threshold(const Volume& volume) {
     if (variance > best_variance) best_variance = variance, best = b;
   }
   return range.min + float((best + 0.5) / scale);  // between bin `best` and the next
+}
+
+float air_threshold(const Volume& volume) {
+  return otsu_threshold(volume, otsu_threshold(volume));
 }
 
 }  // namespace palpate::volume

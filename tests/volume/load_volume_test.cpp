@@ -189,6 +189,21 @@ TEST(Otsu, SplitsTwoPopulationsBetweenThem) {
   EXPECT_LT(threshold, 200.0f);
 }
 
+// A head's histogram: much air, dark tissue (skin, CSF, skull), bright tissue. Otsu's threshold falls
+// between dark and bright; the air threshold between air and dark, where the skin's edge is.
+TEST(Otsu, AirThresholdSplitsAirFromTheDarkestTissue) {
+  Volume volume;
+  volume.size = {10, 10, 10};
+  volume.values.assign(1000, 2.0f);                                   // air
+  for (std::size_t i = 0; i < 250; ++i) volume.values[i] = 30.0f;     // dark tissue
+  for (std::size_t i = 250; i < 500; ++i) volume.values[i] = 200.0f;  // bright tissue
+  const float tissue = otsu_threshold(volume), air = air_threshold(volume);
+  EXPECT_GT(tissue, 30.0f);
+  EXPECT_LT(tissue, 200.0f);
+  EXPECT_GT(air, 2.0f);
+  EXPECT_LT(air, 30.0f);
+}
+
 // The real volumes: heads closed against their border, the skull-stripped template's brain; each
 // surface closed and manifold, within the volume's extent (measured: spm12 heads 180 x 209 x 174 and
 // 168 x 209 x 172 mm, the 2009a brain 144 x 180 x 154 mm).

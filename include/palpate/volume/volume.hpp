@@ -14,6 +14,7 @@
 #include <filesystem>
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -41,8 +42,12 @@ IntensityRange intensity_range(const Volume& volume) noexcept;
 // Throws palpate::Error (see above).
 Volume load_volume(const std::filesystem::path& file);
 
-// A threshold between background and tissue from the intensity histogram (Otsu's, 256 bins): what
-// `from-volume` uses when no --iso is given.
-float otsu_threshold(const Volume& volume);
+// A threshold between background and tissue from the intensity histogram (Otsu's, 256 bins), of the
+// intensities up to `below` only when given: what `from-volume` uses when no --iso is given.
+float otsu_threshold(const Volume& volume, float below = std::numeric_limits<float>::infinity());
+// Between air and the darkest tissue: Otsu's threshold of the intensities below Otsu's threshold. On an
+// MRI of the head the skin's edge, where Otsu's alone cuts through the skull and CSF (and the skin
+// comes out full of holes): what a closed surface (--closed, the skin of `scene from-volume`) uses.
+float air_threshold(const Volume& volume);
 
 }  // namespace palpate::volume
