@@ -6,6 +6,7 @@
 #include <vtkCommand.h>
 #include <vtkMatrix4x4.h>
 #include <vtkNew.h>
+#include <vtkOpenGLCamera.h>
 #include <vtkOpenGLPolyDataMapper.h>
 #include <vtkPointData.h>
 #include <vtkPolyData.h>
@@ -32,14 +33,14 @@ constexpr const char* normal_dec = "//VTK::Normal::Dec";
 constexpr const char* position_impl = "//VTK::PositionVC::Impl";
 constexpr const char* normal_impl = "//VTK::Normal::Impl";
 
-// Displaced in view coordinates; MCDCMatrix and MCVCMatrix hold the actor's matrix and the buffer's
-// shift and scale, so the displacement goes back to the buffer's coordinates through the inverse. Only
-// the displacement: away from the dents gl_Position is VTK's own to the bit, silhouettes included.
+// Displaced in view coordinates (MCVCMatrix holds the actor's matrix and the buffer's shift and scale);
+// gl_Position is VTK's own plus the displacement taken to clip space by the camera's projection
+// (palpateVCDC, fed with the dents), so that away from the dents it is VTK's to the bit.
 constexpr const char* vertex_position = R"glsl(
   vec4 palpateRest = MCVCMatrix * vertexMC;
   palpateRestVC = palpateRest.xyz;
   vertexVCVSOutput = vec4(palpate_displace(palpateRest.xyz, normalize(normalMatrix * normalMC)), 1.0);
-  gl_Position = MCDCMatrix * (vertexMC + inverse(MCVCMatrix) * vec4(vertexVCVSOutput.xyz - palpateRest.xyz, 0.0));
+  gl_Position = MCDCMatrix * vertexMC + palpateVCDC * vec4(vertexVCVSOutput.xyz - palpateRest.xyz, 0.0);
 )glsl";
 
 constexpr const char* fragment_normal = R"glsl(//VTK::Normal::Impl
@@ -74,6 +75,11 @@ struct ActorDeformation::State {
     program.SetUniform4fv("palpate_dent_center_depth", slots, &data.center_depth[0].x);
     program.SetUniform4fv("palpate_dent_shape", slots, &data.shape[0].x);
     program.SetUniformi("palpate_dent_count", std::min(data.count, slots));
+    vtkMatrix4x4 *world_to_view = nullptr, *view_to_clip = nullptr, *world_to_clip = nullptr;
+    vtkMatrix3x3* normals = nullptr;
+    static_cast<vtkOpenGLCamera*>(renderer->GetActiveCamera())
+        ->GetKeyMatrices(renderer, world_to_view, normals, view_to_clip, world_to_clip);
+    program.SetUniformMatrix("palpateVCDC", view_to_clip);
   }
 };
 
@@ -102,7 +108,9 @@ ActorDeformation::ActorDeformation(vtkActor* actor, vtkRenderer* renderer, int d
   const std::string snippet = gl::deform_glsl(gl::GlslDialect::uniform_arrays, state_->slots);
   vtkShaderProperty* shaders = actor->GetShaderProperty();
   shaders->AddVertexShaderReplacement(
-      normal_dec, true, std::string(normal_dec) + "\n" + snippet + "out vec3 palpateRestVC;\n", false);
+      normal_dec, true,
+      std::string(normal_dec) + "\n" + snippet + "out vec3 palpateRestVC;\nuniform mat4 palpateVCDC;\n",
+      false);
   shaders->AddVertexShaderReplacement(position_impl, true, vertex_position, false);
   shaders->AddFragmentShaderReplacement(
       normal_dec, true, std::string(normal_dec) + "\n" + snippet + "in vec3 palpateRestVC;\n", false);
