@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <glm/geometric.hpp>
 #include <map>
 
@@ -38,6 +39,12 @@ struct Slice {
 std::string trimmed(const char* value) {
   std::string text = value ? value : "";
   while (!text.empty() && (text.back() == ' ' || text.back() == '\0')) text.pop_back();
+  return text;
+}
+
+std::string millimetres(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g mm", value);
   return text;
 }
 
@@ -192,15 +199,20 @@ Volume load_dicom(const std::filesystem::path& folder) {
     return glm::dot(a.position, normal) < glm::dot(b.position, normal);
   });
   const glm::dvec3 step = (slices.back().position - slices.front().position) / double(slices.size() - 1);
-  const double step_mm = glm::length(step);
+  // Each gap against the typical one (the median), so that the message names the odd pair.
+  std::vector<double> gaps;
+  for (std::size_t s = 1; s < slices.size(); ++s)
+    gaps.push_back(glm::length(slices[s].position - slices[s - 1].position));
+  std::vector<double> sorted = gaps;
+  std::nth_element(sorted.begin(), sorted.begin() + std::ptrdiff_t(sorted.size() / 2), sorted.end());
+  const double typical = sorted[sorted.size() / 2];
   for (std::size_t s = 1; s < slices.size(); ++s) {
-    const double gap = glm::length(slices[s].position - slices[s - 1].position);
-    if (gap < 1e-3 * std::max(step_mm, 1e-6) || std::abs(gap - step_mm) > 0.01 * step_mm + 1e-4) {
+    const double gap = gaps[s - 1];
+    if (gap < 1e-3 * std::max(typical, 1e-6) || std::abs(gap - typical) > 0.01 * typical + 1e-4) {
       throw Error(folder, 0,
                   "slices " + name_of(slices[s - 1].file, folder) + " and " +
-                      name_of(slices[s].file, folder) + " are " + std::to_string(gap) +
-                      " mm apart, the series' mean step is " + std::to_string(step_mm) +
-                      " mm (a duplicate or a missing slice)");
+                      name_of(slices[s].file, folder) + " are " + millimetres(gap) + " apart, the others " +
+                      millimetres(typical) + " (a missing or a duplicate slice)");
     }
   }
   const int count = int(slices.size());
