@@ -1,0 +1,52 @@
+#pragma once
+// Distances along a mesh's surface from a point on it, out to a radius: the falloff of a dent measured
+// over the surface, so that a press on one bank of a sulcus leaves the facing bank alone (the paper's
+// named limit of its Euclidean falloff).
+//
+// Fast marching on the triangles (Kimmel and Sethian, 1998): the front leaves the contact triangle's
+// three corners with their in-plane distances and crosses each triangle as a plane wave from the
+// unfolded source of its two known corners; at an obtuse corner the neighbouring triangle is unfolded
+// into the plane, so the front is not forced along edges there. Written here: no Debian library marches
+// on a triangle mesh with a workspace reused per frame (CGAL's exact shortest paths serve as the test's
+// reference: exact, but far too slow per frame).
+#include <cstdint>
+#include <glm/vec3.hpp>
+#include <span>
+#include <vector>
+
+#include "palpate/core/mesh.hpp"
+
+namespace palpate {
+
+class GeodesicField {
+ public:
+  // Builds the mesh's adjacency and sizes the workspace once. The mesh must outlive the field.
+  explicit GeodesicField(const Mesh& mesh);
+
+  // Marches from `point_mm` (on triangle `triangle`, the t-th of Mesh::indices / 3) until the front
+  // passes `radius_mm`. No allocation. Throws palpate::Error for a triangle out of range.
+  void compute(std::uint32_t triangle, glm::vec3 point_mm, float radius_mm);
+
+  // The vertices within the radius, nearest first, from the last compute().
+  std::span<const std::uint32_t> reached() const noexcept { return reached_; }
+  // A vertex's distance along the surface from the last compute(); +infinity beyond the radius.
+  float distance_mm(std::uint32_t vertex) const noexcept;
+
+ private:
+  void update(std::uint32_t vertex, std::uint32_t triangle);
+  float unfolded_update(std::uint32_t c, std::uint32_t a, std::uint32_t b, std::uint32_t triangle) const;
+  void push_or_lower(std::uint32_t vertex, float distance);
+  std::uint32_t pop();
+  void sift_up(std::size_t at);
+  void sift_down(std::size_t at);
+
+  const Mesh& mesh_;
+  std::vector<std::uint32_t> first_triangle_, vertex_triangles_;  // the triangles around each vertex
+  std::vector<std::int32_t> across_;  // across_[3t + e]: the triangle beyond edge e (corners e, e+1) of t
+  std::vector<float> distance_;
+  std::vector<std::uint8_t> alive_;
+  std::vector<std::int32_t> heap_position_;  // -1: not in the heap
+  std::vector<std::uint32_t> heap_, touched_, reached_;
+};
+
+}  // namespace palpate

@@ -1,0 +1,212 @@
+#include "palpate/core/geodesic.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <glm/vec2.hpp>
+#include <limits>
+#include <string>
+#include <tuple>
+
+#include "palpate/core/error.hpp"
+
+namespace palpate {
+namespace {
+
+constexpr float infinity = std::numeric_limits<float>::infinity();
+
+// The front's arrival at C in a plane where it is known at A (da) and B (db): from the source S that
+// is da from A and db from B on the far side of AB, straight to C when that line crosses AB between
+// A and B; else along an edge. Exact for a plane wave; the edge paths bound it from above.
+float planar_update(glm::vec2 a, float da, glm::vec2 b, float db, glm::vec2 c) {
+  const float along_edges = std::min(da + glm::distance(a, c), db + glm::distance(b, c));
+  const glm::vec2 edge = b - a;
+  const float length = glm::length(edge);
+  if (!(length > 0.0f)) return along_edges;
+  const glm::vec2 u = edge / length, n(-u.y, u.x);
+  const float side = glm::dot(c - a, n) >= 0.0f ? 1.0f : -1.0f;
+  const float sx = (da * da - db * db + length * length) / (2.0f * length);
+  const float sy2 = da * da - sx * sx;
+  if (sy2 < 0.0f) return along_edges;  // no source makes both distances: the front is not planar here
+  const glm::vec2 source = a + u * sx - n * (side * std::sqrt(sy2));
+  const float source_height = glm::dot(source - a, n), c_height = glm::dot(c - a, n);
+  if (!(source_height * c_height < 0.0f)) return along_edges;
+  const glm::vec2 crossing = source + (c - source) * (source_height / (source_height - c_height));
+  const float x = glm::dot(crossing - a, u);
+  if (x < 0.0f || x > length) return along_edges;
+  return std::min(glm::distance(source, c), along_edges);
+}
+
+// Where p lies in the plane with a at the origin and b on the +x axis, on the side `side` (+1: +y).
+glm::vec2 in_plane(glm::vec3 a, glm::vec3 b, glm::vec3 p, float side) {
+  const float length = glm::distance(a, b);
+  const float x = glm::dot(p - a, b - a) / length;
+  return {x, side * std::sqrt(std::max(glm::dot(p - a, p - a) - x * x, 0.0f))};
+}
+
+}  // namespace
+
+GeodesicField::GeodesicField(const Mesh& mesh) : mesh_(mesh) {
+  const std::size_t vertices = mesh.vertex_count(), triangles = mesh.indices.size() / 3;
+  first_triangle_.assign(vertices + 1, 0);
+  for (const std::uint32_t v : mesh.indices) ++first_triangle_[v + 1];
+  for (std::size_t v = 0; v < vertices; ++v) first_triangle_[v + 1] += first_triangle_[v];
+  vertex_triangles_.resize(mesh.indices.size());
+  std::vector<std::uint32_t> filled(first_triangle_.begin(), first_triangle_.end() - 1);
+  for (std::size_t t = 0; t < triangles; ++t)
+    for (int k = 0; k < 3; ++k) vertex_triangles_[filled[mesh.indices[3 * t + k]]++] = std::uint32_t(t);
+
+  // The triangle across each edge: edges sorted by their corners; an edge of more than two triangles
+  // (non-manifold) is left without one.
+  std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>> edges;  // low, high, 3t + e
+  edges.reserve(mesh.indices.size());
+  for (std::size_t t = 0; t < triangles; ++t) {
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t p = mesh.indices[3 * t + e], q = mesh.indices[3 * t + (e + 1) % 3];
+      edges.emplace_back(std::min(p, q), std::max(p, q), std::uint32_t(3 * t + e));
+    }
+  }
+  std::sort(edges.begin(), edges.end());
+  across_.assign(mesh.indices.size(), -1);
+  for (std::size_t i = 0; i < edges.size();) {
+    std::size_t j = i + 1;
+    while (j < edges.size() && std::get<0>(edges[j]) == std::get<0>(edges[i]) &&
+           std::get<1>(edges[j]) == std::get<1>(edges[i]))
+      ++j;
+    if (j - i == 2) {
+      across_[std::get<2>(edges[i])] = std::int32_t(std::get<2>(edges[i + 1]) / 3);
+      across_[std::get<2>(edges[i + 1])] = std::int32_t(std::get<2>(edges[i]) / 3);
+    }
+    i = j;
+  }
+
+  distance_.assign(vertices, infinity);
+  alive_.assign(vertices, 0);
+  heap_position_.assign(vertices, -1);
+  heap_.reserve(vertices);
+  touched_.reserve(vertices);
+  reached_.reserve(vertices);
+}
+
+float GeodesicField::distance_mm(std::uint32_t vertex) const noexcept {
+  return vertex < distance_.size() ? distance_[vertex] : infinity;
+}
+
+void GeodesicField::compute(std::uint32_t triangle, glm::vec3 point_mm, float radius_mm) {
+  if (std::size_t(triangle) * 3 >= mesh_.indices.size()) {
+    throw Error("GeodesicField: triangle " + std::to_string(triangle) + " of " +
+                std::to_string(mesh_.indices.size() / 3));
+  }
+  for (const std::uint32_t v : touched_) {
+    distance_[v] = infinity;
+    alive_[v] = 0;
+    heap_position_[v] = -1;
+  }
+  touched_.clear();
+  heap_.clear();
+  reached_.clear();
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t v = mesh_.indices[3 * std::size_t(triangle) + k];
+    push_or_lower(v, glm::distance(mesh_.positions_mm[v], point_mm));  // in the triangle's plane
+  }
+  while (!heap_.empty()) {
+    const std::uint32_t u = pop();
+    alive_[u] = 1;
+    if (distance_[u] > radius_mm) break;
+    reached_.push_back(u);
+    for (std::uint32_t i = first_triangle_[u]; i < first_triangle_[u + 1]; ++i) {
+      const std::uint32_t t = vertex_triangles_[i];
+      for (int k = 0; k < 3; ++k) {
+        const std::uint32_t c = mesh_.indices[3 * std::size_t(t) + k];
+        if (!alive_[c]) update(c, t);
+      }
+    }
+  }
+}
+
+void GeodesicField::update(std::uint32_t c, std::uint32_t triangle) {
+  const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(triangle)];
+  const int k = corners[0] == c ? 0 : corners[1] == c ? 1 : 2;
+  const std::uint32_t a = corners[(k + 1) % 3], b = corners[(k + 2) % 3];
+  const glm::vec3 pc = mesh_.positions_mm[c];
+  float best = infinity;
+  if (alive_[a]) best = std::min(best, distance_[a] + glm::distance(mesh_.positions_mm[a], pc));
+  if (alive_[b]) best = std::min(best, distance_[b] + glm::distance(mesh_.positions_mm[b], pc));
+  if (alive_[a] && alive_[b]) best = std::min(best, unfolded_update(c, a, b, triangle));
+  push_or_lower(c, best);
+}
+
+// The triangle's own plane wave; at an obtuse corner c also the neighbour across ab, unfolded into the
+// plane, whose far corner d splits the corner into two sharper ones (one level of Kimmel–Sethian
+// unfolding: the front then arrives at c through the fan of the neighbour, not along an edge).
+float GeodesicField::unfolded_update(std::uint32_t c, std::uint32_t a, std::uint32_t b,
+                                     std::uint32_t triangle) const {
+  const glm::vec3 pa = mesh_.positions_mm[a], pb = mesh_.positions_mm[b], pc = mesh_.positions_mm[c];
+  const glm::vec2 a2(0.0f), b2(glm::distance(pa, pb), 0.0f), c2 = in_plane(pa, pb, pc, 1.0f);
+  float best = planar_update(a2, distance_[a], b2, distance_[b], c2);
+  if (glm::dot(pa - pc, pb - pc) >= 0.0f) return best;  // not obtuse at c
+  const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(triangle)];
+  int edge = 0;  // the edge of `triangle` from a to b, either way round
+  for (int e = 0; e < 3; ++e) {
+    const std::uint32_t p = corners[e], q = corners[(e + 1) % 3];
+    if ((p == a && q == b) || (p == b && q == a)) edge = e;
+  }
+  const std::int32_t neighbour = across_[3 * std::size_t(triangle) + edge];
+  if (neighbour < 0) return best;
+  const std::uint32_t* far = &mesh_.indices[3 * std::size_t(neighbour)];
+  const std::uint32_t d = far[0] != a && far[0] != b ? far[0] : far[1] != a && far[1] != b ? far[1] : far[2];
+  if (!alive_[d]) return best;
+  const glm::vec2 d2 = in_plane(pa, pb, mesh_.positions_mm[d], -1.0f);
+  best = std::min(best, planar_update(a2, distance_[a], d2, distance_[d], c2));
+  return std::min(best, planar_update(d2, distance_[d], b2, distance_[b], c2));
+}
+
+void GeodesicField::push_or_lower(std::uint32_t vertex, float distance) {
+  if (!(distance < distance_[vertex])) return;
+  if (distance_[vertex] == infinity && heap_position_[vertex] < 0) touched_.push_back(vertex);
+  distance_[vertex] = distance;
+  if (heap_position_[vertex] < 0) {
+    heap_position_[vertex] = std::int32_t(heap_.size());
+    heap_.push_back(vertex);
+  }
+  sift_up(std::size_t(heap_position_[vertex]));
+}
+
+std::uint32_t GeodesicField::pop() {
+  const std::uint32_t top = heap_.front();
+  heap_position_[top] = -1;
+  heap_.front() = heap_.back();
+  heap_.pop_back();
+  if (!heap_.empty()) {
+    heap_position_[heap_.front()] = 0;
+    sift_down(0);
+  }
+  return top;
+}
+
+void GeodesicField::sift_up(std::size_t at) {
+  while (at > 0) {
+    const std::size_t parent = (at - 1) / 2;
+    if (!(distance_[heap_[at]] < distance_[heap_[parent]])) break;
+    std::swap(heap_[at], heap_[parent]);
+    heap_position_[heap_[at]] = std::int32_t(at);
+    heap_position_[heap_[parent]] = std::int32_t(parent);
+    at = parent;
+  }
+}
+
+void GeodesicField::sift_down(std::size_t at) {
+  for (;;) {
+    const std::size_t left = 2 * at + 1, right = left + 1;
+    std::size_t least = at;
+    if (left < heap_.size() && distance_[heap_[left]] < distance_[heap_[least]]) least = left;
+    if (right < heap_.size() && distance_[heap_[right]] < distance_[heap_[least]]) least = right;
+    if (least == at) return;
+    std::swap(heap_[at], heap_[least]);
+    heap_position_[heap_[at]] = std::int32_t(at);
+    heap_position_[heap_[least]] = std::int32_t(least);
+    at = least;
+  }
+}
+
+}  // namespace palpate
