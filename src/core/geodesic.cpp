@@ -136,29 +136,65 @@ void GeodesicField::update(std::uint32_t c, std::uint32_t triangle) {
   push_or_lower(c, best);
 }
 
-// The triangle's own plane wave; at an obtuse corner c also the neighbour across ab, unfolded into the
-// plane, whose far corner d splits the corner into two sharper ones (one level of Kimmel–Sethian
-// unfolding: the front then arrives at c through the fan of the neighbour, not along an edge).
+// The triangle's own plane wave; at an obtuse corner c, Kimmel and Sethian's unfolding: the triangles
+// across ab are laid into the plane, one after another, until a corner d' splits the corner at c into
+// two acute ones; the front then arrives at c from (a, d') and (d', b), through the strip, not along an
+// edge. Up to `max_unfoldings` triangles.
 float GeodesicField::unfolded_update(std::uint32_t c, std::uint32_t a, std::uint32_t b,
                                      std::uint32_t triangle) const {
+  constexpr int max_unfoldings = 6;
   const glm::vec3 pa = mesh_.positions_mm[a], pb = mesh_.positions_mm[b], pc = mesh_.positions_mm[c];
   const glm::vec2 a2(0.0f), b2(glm::distance(pa, pb), 0.0f), c2 = in_plane(pa, pb, pc, 1.0f);
   float best = planar_update(a2, distance_[a], b2, distance_[b], c2);
   if (glm::dot(pa - pc, pb - pc) >= 0.0f) return best;  // not obtuse at c
-  const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(triangle)];
-  int edge = 0;  // the edge of `triangle` from a to b, either way round
-  for (int e = 0; e < 3; ++e) {
-    const std::uint32_t p = corners[e], q = corners[(e + 1) % 3];
-    if ((p == a && q == b) || (p == b && q == a)) edge = e;
+
+  // The strip: the edge (p, q) just crossed, laid out at (p2, q2), the triangle beyond it, and the
+  // point of the last triangle off that edge (to put the next one on the other side).
+  std::uint32_t p = a, q = b, current = triangle;
+  glm::vec2 p2 = a2, q2 = b2, behind = c2;
+  for (int level = 0; level < max_unfoldings; ++level) {
+    const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(current)];
+    int edge = -1;
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t u = corners[e], v = corners[(e + 1) % 3];
+      if ((u == p && v == q) || (u == q && v == p)) edge = e;
+    }
+    if (edge < 0) return best;
+    const std::int32_t next = across_[3 * std::size_t(current) + edge];
+    if (next < 0) return best;
+    const std::uint32_t* far = &mesh_.indices[3 * std::size_t(next)];
+    const std::uint32_t d = far[0] != p && far[0] != q   ? far[0]
+                            : far[1] != p && far[1] != q ? far[1]
+                                                         : far[2];
+    // d laid out across (p2, q2), on the side away from `behind`.
+    const glm::vec2 edge2 = q2 - p2;
+    const float length = glm::length(edge2);
+    if (!(length > 0.0f)) return best;
+    const glm::vec2 u = edge2 / length, n(-u.y, u.x);
+    const float dp = glm::distance(mesh_.positions_mm[p], mesh_.positions_mm[d]);
+    const float dq = glm::distance(mesh_.positions_mm[q], mesh_.positions_mm[d]);
+    const float x = (dp * dp - dq * dq + length * length) / (2.0f * length);
+    const float side = glm::dot(behind - p2, n) >= 0.0f ? -1.0f : 1.0f;
+    const glm::vec2 d2 = p2 + u * x + n * (side * std::sqrt(std::max(dp * dp - x * x, 0.0f)));
+    const bool acute_to_a = glm::dot(a2 - c2, d2 - c2) > 0.0f, acute_to_b = glm::dot(b2 - c2, d2 - c2) > 0.0f;
+    if (acute_to_a && acute_to_b) {  // d' splits the obtuse corner
+      if (!alive_[d]) return best;
+      best = std::min(best, planar_update(a2, distance_[a], d2, distance_[d], c2));
+      return std::min(best, planar_update(d2, distance_[d], b2, distance_[b], c2));
+    }
+    // Onward across the edge of the new triangle on the section's side: d' leaning toward b (not acute
+    // to a) leaves the section between a's side and d', so across (p, d); else across (d, q). The next
+    // triangle lies away from the new triangle's third corner.
+    if (!acute_to_a) {
+      behind = q2;
+      q = d, q2 = d2;
+    } else {
+      behind = p2;
+      p = d, p2 = d2;
+    }
+    current = std::uint32_t(next);
   }
-  const std::int32_t neighbour = across_[3 * std::size_t(triangle) + edge];
-  if (neighbour < 0) return best;
-  const std::uint32_t* far = &mesh_.indices[3 * std::size_t(neighbour)];
-  const std::uint32_t d = far[0] != a && far[0] != b ? far[0] : far[1] != a && far[1] != b ? far[1] : far[2];
-  if (!alive_[d]) return best;
-  const glm::vec2 d2 = in_plane(pa, pb, mesh_.positions_mm[d], -1.0f);
-  best = std::min(best, planar_update(a2, distance_[a], d2, distance_[d], c2));
-  return std::min(best, planar_update(d2, distance_[d], b2, distance_[b], c2));
+  return best;
 }
 
 void GeodesicField::push_or_lower(std::uint32_t vertex, float distance) {

