@@ -36,6 +36,7 @@
 #include "palpate/gl/framebuffer.hpp"
 #include "palpate/gl/headless_context.hpp"
 #include "palpate/gl/png.hpp"
+#include "picture_comparison.hpp"
 
 namespace palpate::coin {
 namespace {
@@ -153,27 +154,8 @@ class CoinDeformShader : public testing::Test {
   uint32_t cache_context_ = SoGLCacheContextElement::getUniqueCacheContext();
 };
 
-struct Comparison {
-  int changed_near = 0, changed_far = 0;
-  double mean = 0.0;
-  int worst = 0;
-};
-
-Comparison compare(const Picture& a, const Picture& b, glm::vec2 centre_px, float reach_px) {
-  Comparison result;
-  double sum = 0.0;
-  for (int y = 0; y < size; ++y) {
-    for (int x = 0; x < size; ++x) {
-      int difference = 0;
-      for (int c = 0; c < 3; ++c) difference += std::abs(a.at(x, y, c) - b.at(x, y, c));
-      sum += difference;
-      result.worst = std::max(result.worst, difference);
-      if (difference <= 6) continue;
-      (glm::distance(glm::vec2(x, y), centre_px) <= reach_px ? result.changed_near : result.changed_far) += 1;
-    }
-  }
-  result.mean = sum / double(size * size);
-  return result;
+test::PictureComparison compare(const Picture& a, const Picture& b, glm::vec2 centre_px, float reach_px) {
+  return test::compare_pictures(a.rgba, b.rgba, size, size, 4, centre_px, reach_px);
 }
 
 glm::vec2 pixel_of(glm::vec3 world) {  // rows from the bottom, as glReadPixels gives them
@@ -221,8 +203,10 @@ TEST_F(CoinDeformShader, DentsLikeTheCpuReferenceAndNowhereElse) {
     for (const glm::vec3 axis : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)})
       reach_px =
           std::max(reach_px, glm::distance(pixel_of(contact + axis * 4.0f * world_dent.sigma_mm), centre_px));
-    const Comparison against_plain = compare(undeformed, deformed, centre_px, reach_px * 1.1f + 3.0f);
-    const Comparison against_cpu = compare(expected, deformed, centre_px, reach_px * 1.1f + 3.0f);
+    const test::PictureComparison against_plain =
+        compare(undeformed, deformed, centre_px, reach_px * 1.1f + 3.0f);
+    const test::PictureComparison against_cpu =
+        compare(expected, deformed, centre_px, reach_px * 1.1f + 3.0f);
     std::printf(
         "%s: dent %d px (%d beyond its reach); against the CPU reference: mean %.3f, worst %d (of 765)\n",
         c.name, against_plain.changed_near, against_plain.changed_far, against_cpu.mean, against_cpu.worst);
@@ -238,7 +222,7 @@ TEST_F(CoinDeformShader, WithoutDentsItDrawsAsCoinsFixedFunction) {
   DeformShader shader({.dent_slots = 2, .lights = 3, .per_fragment = true});
   const Picture fixed = render(scene(sphere, glm::mat4(1.0f), {.several = true}, nullptr));
   const Picture shaded = render(scene(sphere, glm::mat4(1.0f), {.several = true}, shader.node()));
-  const Comparison comparison = compare(fixed, shaded, glm::vec2(0), 0.0f);
+  const test::PictureComparison comparison = compare(fixed, shaded, glm::vec2(0), 0.0f);
   std::printf("without dents, against Coin's fixed function: mean %.3f, worst %d\n", comparison.mean,
               comparison.worst);
   // Measured: mean 0.006, worst 2 (rounding: the same equation per vertex, in GLSL).

@@ -29,6 +29,7 @@
 #include "palpate/core/deform.hpp"
 #include "palpate/core/error.hpp"
 #include "palpate/core/shapes.hpp"
+#include "picture_comparison.hpp"
 
 namespace palpate::vtk {
 namespace {
@@ -145,27 +146,8 @@ struct Scene {
   }
 };
 
-struct Comparison {
-  int changed_near = 0, changed_far = 0;
-  double mean = 0.0;
-  int worst = 0;
-};
-
-Comparison compare(const Picture& a, const Picture& b, glm::vec2 centre_px, float reach_px) {
-  Comparison result;
-  double sum = 0.0;
-  for (int y = 0; y < size; ++y) {
-    for (int x = 0; x < size; ++x) {
-      int difference = 0;
-      for (int c = 0; c < 3; ++c) difference += std::abs(a.at(x, y, c) - b.at(x, y, c));
-      sum += difference;
-      result.worst = std::max(result.worst, difference);
-      if (difference <= 6) continue;
-      (glm::distance(glm::vec2(x, y), centre_px) <= reach_px ? result.changed_near : result.changed_far) += 1;
-    }
-  }
-  result.mean = sum / double(size * size);
-  return result;
+test::PictureComparison compare(const Picture& a, const Picture& b, glm::vec2 centre_px, float reach_px) {
+  return test::compare_pictures(a.rgb, b.rgb, size, size, 3, centre_px, reach_px);
 }
 
 // Where a world point lands in the picture (GetPixelData's rows go up from the bottom).
@@ -204,8 +186,9 @@ void expect_dent_like_the_cpu_reference(const glm::mat4& actor_matrix, glm::vec3
   for (const glm::vec3 axis : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)})
     reach_px = std::max(
         reach_px, glm::distance(pixel_of(plain.renderer, contact + axis * 4.0f * dent.sigma_mm), centre_px));
-  const Comparison against_plain = compare(undeformed, deformed, centre_px, reach_px * 1.1f + 3.0f);
-  const Comparison against_cpu = compare(expected, deformed, centre_px, reach_px * 1.1f + 3.0f);
+  const test::PictureComparison against_plain =
+      compare(undeformed, deformed, centre_px, reach_px * 1.1f + 3.0f);
+  const test::PictureComparison against_cpu = compare(expected, deformed, centre_px, reach_px * 1.1f + 3.0f);
   std::printf("dent %d px (%d beyond its reach); against the CPU reference: mean %.3f, worst %d (of 765)\n",
               against_plain.changed_near, against_plain.changed_far, against_cpu.mean, against_cpu.worst);
   EXPECT_GT(against_plain.changed_near, 1000) << "no dent";
