@@ -215,7 +215,8 @@ std::vector<ToolkitTally> bench_toolkits(const Scene& scene, const ToolkitView& 
   SoDB::init();  // once per process; later calls return at once
   CoinScenes coin(scene, view, dent, touched);
   coin.release();
-  std::vector<std::string> names{"coin plain", "coin deform", "coin deform-per-fragment"};
+  std::vector<std::pair<const char*, const char*>> names{
+      {"coin", "plain"}, {"coin", "deform"}, {"coin", "deform-per-fragment"}};
   std::vector<std::function<void()>> frames{[&] { coin.draw(0, view); }, [&] { coin.draw(1, view); },
                                             [&] { coin.draw(2, view); }};
 
@@ -225,7 +226,7 @@ std::vector<ToolkitTally> bench_toolkits(const Scene& scene, const ToolkitView& 
     const auto objects = vtk_objects(scene);
     vtk_plain = std::make_unique<VtkWindow>(objects, scene, view, nullptr, touched);
     vtk_deformed = std::make_unique<VtkWindow>(objects, scene, view, &dent, touched);
-    names.insert(names.end(), {"vtk plain", "vtk deform"});
+    names.insert(names.end(), {{"vtk", "plain"}, {"vtk", "deform"}});
     frames.insert(frames.end(), {[&] { vtk_plain->draw(); }, [&] { vtk_deformed->draw(); }});
   } else {
     std::printf(
@@ -235,8 +236,7 @@ std::vector<ToolkitTally> bench_toolkits(const Scene& scene, const ToolkitView& 
   const std::vector<Tally> tallies = measure_interleaved(frames, seconds, rounds);
   std::vector<ToolkitTally> rows;
   for (std::size_t i = 0; i < frames.size(); ++i) {
-    const auto space = names[i].find(' ');
-    rows.push_back({names[i].substr(0, space), names[i].substr(space + 1), tallies[i]});
+    rows.push_back({names[i].first, names[i].second, tallies[i]});
   }
   return rows;
 }
