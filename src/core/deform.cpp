@@ -1,5 +1,6 @@
 #include "palpate/core/deform.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/matrix.hpp>
@@ -15,33 +16,64 @@ float dent_slope(float d, float depth_mm, float sigma_mm) noexcept {
   return -depth_mm * d / s2 * std::exp(-(d * d) / (2.0f * s2));
 }
 
-float dent_displacement(glm::vec3 v, std::span<const Dent> dents) noexcept {
+namespace {
+
+// The weight of the sample's distance against the straight line's (deform.hpp): 0 within the contact
+// triangle's reach, 1 from twice that on.
+float surface_blend(const Dent& dent, float sample_distance) noexcept {
+  const float r = std::max(dent.seed_radius_mm, 1e-4f * dent.sigma_mm);
+  const float t = std::clamp((sample_distance - r) / r, 0.0f, 1.0f);
+  return t * t * (3.0f - 2.0f * t);
+}
+
+// d, and the vector toward the contact whose tangential part sets the tilt's direction (VC, or the
+// sample's direction scaled to d).
+struct DentReach {
+  float distance;
+  glm::vec3 toward;
+};
+
+DentReach dent_reach(const Dent& dent, bool first, glm::vec3 v, glm::vec4 sample) noexcept {
+  const glm::vec3 to_contact = dent.center_mm - v;  // VC
+  const float straight = glm::length(to_contact);
+  if (!(first && dent.along_surface)) return {straight, to_contact};
+  const float t = surface_blend(dent, sample.w), along = std::max(sample.w, straight);
+  return {straight + (along - straight) * t, to_contact + (glm::vec3(sample) * along - to_contact) * t};
+}
+
+}  // namespace
+
+float dent_distance(const Dent& dent, glm::vec3 v, glm::vec4 surface_sample) noexcept {
+  return dent_reach(dent, true, v, surface_sample).distance;
+}
+
+float dent_displacement(glm::vec3 v, std::span<const Dent> dents, glm::vec4 surface_sample) noexcept {
   float sum = 0.0f;
-  for (const Dent& dent : dents) {
-    const glm::vec3 offset = v - dent.center_mm;
-    const float d2 = glm::dot(offset, offset);
-    const float cutoff = dent_cutoff_sigmas * dent.sigma_mm;
-    if (d2 >= cutoff * cutoff) continue;
-    sum += dent.depth_mm * std::exp(-d2 / (2.0f * dent.sigma_mm * dent.sigma_mm));
+  for (std::size_t i = 0; i < dents.size(); ++i) {
+    const Dent& dent = dents[i];
+    const float d = dent_reach(dent, i == 0, v, surface_sample).distance;
+    if (d >= dent_cutoff_sigmas * dent.sigma_mm) continue;
+    sum += dent_gaussian(d, dent.depth_mm, dent.sigma_mm);
   }
   return sum;
 }
 
-glm::vec3 displaced_position(glm::vec3 v, glm::vec3 n, std::span<const Dent> dents) noexcept {
-  return v - n * dent_displacement(v, dents);
+glm::vec3 displaced_position(glm::vec3 v, glm::vec3 n, std::span<const Dent> dents,
+                             glm::vec4 surface_sample) noexcept {
+  return v - n * dent_displacement(v, dents, surface_sample);
 }
 
-glm::vec3 perturbed_normal(glm::vec3 n0, glm::vec3 v, std::span<const Dent> dents) noexcept {
+glm::vec3 perturbed_normal(glm::vec3 n0, glm::vec3 v, std::span<const Dent> dents,
+                           glm::vec4 surface_sample) noexcept {
   glm::vec3 n = n0;
-  for (const Dent& dent : dents) {
-    const glm::vec3 to_contact = dent.center_mm - v;  // VC
-    const float d2 = glm::dot(to_contact, to_contact);
-    const float cutoff = dent_cutoff_sigmas * dent.sigma_mm;
-    if (d2 >= cutoff * cutoff) continue;
-    const glm::vec3 w = glm::cross(n, to_contact);
+  for (std::size_t i = 0; i < dents.size(); ++i) {
+    const Dent& dent = dents[i];
+    const auto [d, toward] = dent_reach(dent, i == 0, v, surface_sample);
+    if (d >= dent_cutoff_sigmas * dent.sigma_mm) continue;
+    const glm::vec3 w = glm::cross(n, toward);
     const float w_length2 = glm::dot(w, w);
-    if (w_length2 <= 1e-12f * d2) continue;  // at the contact point or straight above it: no tilt
-    const float tan_theta = -dent_slope(std::sqrt(d2), dent.depth_mm, dent.sigma_mm);
+    if (w_length2 <= 1e-12f * glm::dot(toward, toward)) continue;  // at c or straight above it: no tilt
+    const float tan_theta = -dent_slope(d, dent.depth_mm, dent.sigma_mm);
     const float cos_theta = 1.0f / std::sqrt(1.0f + tan_theta * tan_theta);
     const float sin_theta = tan_theta * cos_theta;
     const glm::vec3 axis = w / std::sqrt(w_length2);
@@ -53,10 +85,17 @@ glm::vec3 perturbed_normal(glm::vec3 n0, glm::vec3 v, std::span<const Dent> dent
 Dent dent_in_space(const Dent& dent, const glm::mat4& to_space) noexcept {
   const float scale = std::cbrt(std::abs(glm::determinant(glm::mat3(to_space))));
   return Dent{glm::vec3(to_space * glm::vec4(dent.center_mm, 1.0f)), dent.depth_mm * scale,
-              dent.sigma_mm * scale};
+              dent.sigma_mm * scale, dent.along_surface, dent.seed_radius_mm * scale};
 }
 
-void deform_mesh(const Mesh& mesh, const glm::mat4& transform, std::span<const Dent> dents, Mesh& out) {
+glm::vec4 surface_sample_in_space(glm::vec4 sample, const glm::mat4& to_space) noexcept {
+  const glm::mat3 linear(to_space);
+  const float scale = std::cbrt(std::abs(glm::determinant(linear)));
+  return glm::vec4(linear * glm::vec3(sample) / scale, sample.w * scale);
+}
+
+void deform_mesh(const Mesh& mesh, const glm::mat4& transform, std::span<const Dent> dents, Mesh& out,
+                 std::span<const glm::vec4> surface_samples) {
   const glm::mat3 rotation(transform);
   out.indices = mesh.indices;
   out.colors = mesh.colors;
@@ -65,7 +104,10 @@ void deform_mesh(const Mesh& mesh, const glm::mat4& transform, std::span<const D
   const std::vector<glm::vec3>& directions = mesh.directions.empty() ? mesh.normals : mesh.directions;
   for (std::size_t i = 0; i < mesh.positions_mm.size(); ++i) {
     const glm::vec3 v = glm::vec3(transform * glm::vec4(mesh.positions_mm[i], 1.0f));
-    out.positions_mm[i] = displaced_position(v, glm::normalize(rotation * directions[i]), dents);
+    const glm::vec4 sample = surface_samples.empty()
+                                 ? no_surface_sample
+                                 : glm::vec4(rotation * glm::vec3(surface_samples[i]), surface_samples[i].w);
+    out.positions_mm[i] = displaced_position(v, glm::normalize(rotation * directions[i]), dents, sample);
   }
   compute_vertex_normals(out);
 }

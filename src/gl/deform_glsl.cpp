@@ -15,69 +15,111 @@ constexpr std::string_view uniform_block = R"glsl(layout(std140) uniform Palpate
   vec4 palpate_dent_center_depth[PALPATE_MAX_DENTS];  // xyz contact point c, w penetration p
   vec4 palpate_dent_shape[PALPATE_MAX_DENTS];         // x (4 sigma)^2, y 1/(2 sigma^2), z p/sigma^2, w sigma
   int palpate_dent_count;
+  int palpate_surface_dent;     // 1: the first dent falls off along the surface (the vertex's surface sample)
+  float palpate_surface_seed;   // the radius within which it blends into the straight line
 };
 )glsl";
 constexpr std::string_view uniform_arrays =
     R"glsl(uniform vec4 palpate_dent_center_depth[PALPATE_MAX_DENTS];  // xyz c, w p
 uniform vec4 palpate_dent_shape[PALPATE_MAX_DENTS];  // x (4 sigma)^2, y 1/(2 sigma^2), z p/sigma^2, w sigma
 uniform int palpate_dent_count;
+uniform int palpate_surface_dent;    // 1: the first dent falls off along the surface (the surface sample)
+uniform float palpate_surface_seed;  // the radius within which it blends into the straight line
 )glsl";
 
 // The functions, in the GLSL common to 1.10 and later (and ES 3.00). Their loops run over
 // PALPATE_DENT_SLOTS slots so that the data is read at constant offsets (a software rasterizer gathers
 // lane by lane from a dynamic index); dents past the slots are ignored.
 constexpr std::string_view functions =
-    R"glsl(// V' = V - D * sum G(d), G(d) = p exp(-d^2 / 2 sigma^2), d = |V - c|; a dent is skipped beyond 4 sigma.
-// direction must be of unit length: at d = 0 the surface moves by exactly p, to the tool tip.
-vec3 palpate_displace(vec3 position, vec3 direction) {
+    R"glsl(// The distance d of the first dent along the surface, from the vertex's surface sample (xyz the unit
+// direction toward the contact along the surface, w the distance along it), blended into the straight
+// line e within the contact triangle's reach (palpate/core/deform.hpp); `toward` becomes the vector
+// whose tangential part points the way to the contact (VC for the straight line).
+float palpate_surface_distance(float e, vec4 surface, inout vec3 toward) {
+  float t = smoothstep(palpate_surface_seed, 2.0 * palpate_surface_seed, surface.w);
+  float along = max(surface.w, e);
+  toward = mix(toward, surface.xyz * along, t);
+  return mix(e, along, t);
+}
+
+// V' = V - D * sum G(d), G(d) = p exp(-d^2 / 2 sigma^2), d = |V - c| (or along the surface for the first
+// dent, with `use_surface`); a dent is skipped beyond 4 sigma. direction must be of unit length: at
+// d = 0 the surface moves by exactly p, to the tool tip.
+vec3 palpate_displace_any(vec3 position, vec3 direction, vec4 surface, bool use_surface) {
   float g = 0.0;
   for (int i = 0; i < PALPATE_DENT_SLOTS; ++i) {
     if (i >= palpate_dent_count) break;
     vec4 center_depth = palpate_dent_center_depth[i];
-    vec3 offset = position - center_depth.xyz;
+    vec3 offset = center_depth.xyz - position;
     float d2 = dot(offset, offset);
+    if (use_surface && i == 0 && palpate_surface_dent != 0) {
+      float d = palpate_surface_distance(sqrt(d2), surface, offset);
+      d2 = d * d;
+    }
     g += d2 < palpate_dent_shape[i].x ? center_depth.w * exp(-d2 * palpate_dent_shape[i].y) : 0.0;
   }
   return position - direction * g;
 }
+vec3 palpate_displace(vec3 position, vec3 direction) {
+  return palpate_displace_any(position, direction, vec4(0.0), false);
+}
+vec3 palpate_displace(vec3 position, vec3 direction, vec4 surface) {
+  return palpate_displace_any(position, direction, surface, true);
+}
 
 // The fragment stage: from the undeformed world position and normal interpolated to this fragment,
 // the displaced position V - N sum G(d), evaluated here (N as interpolated: of about unit length), and
-// the paper's per-fragment normal: N rotated about W = N x VC by theta = atan(-G'(d)) toward the contact
-// point, G'(d) = -p d / sigma^2 exp(-d^2 / 2 sigma^2), one dent after the other.
+// the paper's per-fragment normal: N rotated by theta = atan(-G'(d)) toward the contact point (about
+// W = N x VC; along the surface, about N x the surface sample's direction), G'(d) = -p d / sigma^2
+// exp(-d^2 / 2 sigma^2), one dent after the other.
 // Without trigonometry: with T = (W x N) / |W x N|, the unit tangent toward c, the rotated normal is
 // cos(theta) (N + tan(theta) T); its direction is that of N + tan(theta) |N| T for any length of N, so
-// the scale is dropped and the result normalised once. W x N = VC |N|^2 - N (N.VC) has the length
-// |N| |N x VC|, so the step along it is tan(theta) / |N x VC| = (p / sigma^2) exp(-d^2 / 2 sigma^2)
-// sqrt(d^2 / |N x VC|^2), with |N x VC|^2 = |N|^2 d^2 - (N.VC)^2.
+// the scale is dropped and the result normalised once. With K the vector toward c (VC), W x N = K |N|^2 -
+// N (N.K) has the length |N| |N x K|, so the step along it is tan(theta) / |N x K| = (p / sigma^2)
+// exp(-d^2 / 2 sigma^2) sqrt(d^2 / |N x K|^2), with |N x K|^2 = |N|^2 |K|^2 - (N.K)^2.
 // d is measured from the undeformed position, as in palpate_displace. No tilt beyond 4 sigma, nor where
-// d = 0 or N is parallel to VC (|N x VC|^2 <= 1e-12 d^2 |N|^2, as the CPU twin). The normal comes out
+// d = 0 or N is parallel to K (|N x K|^2 <= 1e-12 |K|^2 |N|^2, as the CPU twin). The normal comes out
 // of unit length.
-void palpate_deform_fragment(inout vec3 position, inout vec3 normal) {
+void palpate_deform_fragment_any(inout vec3 position, inout vec3 normal, vec4 surface, bool use_surface) {
   vec3 n = normal;
   float g = 0.0;
   for (int i = 0; i < PALPATE_DENT_SLOTS; ++i) {
     if (i >= palpate_dent_count) break;
     vec4 center_depth = palpate_dent_center_depth[i];
     vec4 shape = palpate_dent_shape[i];
-    vec3 vc = center_depth.xyz - position;
-    float d2 = dot(vc, vc);
+    vec3 toward = center_depth.xyz - position;
+    float d2 = dot(toward, toward);
+    if (use_surface && i == 0 && palpate_surface_dent != 0) {
+      float d = palpate_surface_distance(sqrt(d2), surface, toward);
+      d2 = d * d;
+    }
+    float kk = dot(toward, toward);
     float nn = dot(n, n);
-    float n_vc = dot(n, vc);
-    float cross2 = nn * d2 - n_vc * n_vc;
+    float n_k = dot(n, toward);
+    float cross2 = nn * kk - n_k * n_k;
     float falloff = exp(-d2 * shape.y);  // G(d) / p
     float step = shape.z * falloff * sqrt(d2 / cross2);
     bool reaches = d2 < shape.x;
     g += reaches ? center_depth.w * falloff : 0.0;
-    n += (vc * nn - n * n_vc) * (reaches && cross2 > 1e-12 * d2 * nn ? step : 0.0);  // a select: step is
-  }                                                                                 // not finite there
+    n += (toward * nn - n * n_k) * (reaches && cross2 > 1e-12 * kk * nn ? step : 0.0);  // a select: step
+  }                                                                                     // is not finite there
   position -= normal * g;
   normal = normalize(n);
+}
+void palpate_deform_fragment(inout vec3 position, inout vec3 normal) {
+  palpate_deform_fragment_any(position, normal, vec4(0.0), false);
+}
+void palpate_deform_fragment(inout vec3 position, inout vec3 normal, vec4 surface) {
+  palpate_deform_fragment_any(position, normal, surface, true);
 }
 
 // The perturbed unit normal alone (see palpate_deform_fragment).
 vec3 palpate_perturb_normal(vec3 normal, vec3 rest_position) {
-  palpate_deform_fragment(rest_position, normal);
+  palpate_deform_fragment_any(rest_position, normal, vec4(0.0), false);
+  return normal;
+}
+vec3 palpate_perturb_normal(vec3 normal, vec3 rest_position, vec4 surface) {
+  palpate_deform_fragment_any(rest_position, normal, surface, true);
   return normal;
 }
 
@@ -170,6 +212,10 @@ DeformBlockData make_deform_block_data(std::span<const Dent> dents) noexcept {
     data.shape[i] = glm::vec4(cutoff * cutoff, 1.0f / (2.0f * sigma2), dent.depth_mm / sigma2, dent.sigma_mm);
   }
   data.count = static_cast<std::int32_t>(count);
+  if (count > 0 && dents[0].along_surface) {
+    data.surface_dent = 1;
+    data.surface_seed = std::max(dents[0].seed_radius_mm, 1e-4f * dents[0].sigma_mm);  // as the CPU twin
+  }
   return data;
 }
 

@@ -58,6 +58,8 @@ DeformUniforms::DeformUniforms(std::uint32_t program, std::uint32_t block_bindin
   center_depth_location_ = glGetUniformLocation(program, "palpate_dent_center_depth");
   shape_location_ = glGetUniformLocation(program, "palpate_dent_shape");
   count_location_ = glGetUniformLocation(program, "palpate_dent_count");
+  surface_dent_location_ = glGetUniformLocation(program, "palpate_surface_dent");
+  surface_seed_location_ = glGetUniformLocation(program, "palpate_surface_seed");
   if (center_depth_location_ < 0 && shape_location_ < 0) {
     throw Error("DeformUniforms: program " + std::to_string(program) + " has neither the uniform block " +
                 deform_block_name +
@@ -78,6 +80,8 @@ DeformUniforms::DeformUniforms(DeformUniforms&& other) noexcept
       center_depth_location_(other.center_depth_location_),
       shape_location_(other.shape_location_),
       count_location_(other.count_location_),
+      surface_dent_location_(other.surface_dent_location_),
+      surface_seed_location_(other.surface_seed_location_),
       data_(other.data_) {}
 
 DeformUniforms& DeformUniforms::operator=(DeformUniforms&& other) noexcept {
@@ -90,6 +94,8 @@ DeformUniforms& DeformUniforms::operator=(DeformUniforms&& other) noexcept {
     center_depth_location_ = other.center_depth_location_;
     shape_location_ = other.shape_location_;
     count_location_ = other.count_location_;
+    surface_dent_location_ = other.surface_dent_location_;
+    surface_seed_location_ = other.surface_seed_location_;
     data_ = other.data_;
   }
   return *this;
@@ -118,6 +124,8 @@ void DeformUniforms::apply() const noexcept {
   if (center_depth_location_ >= 0) glUniform4fv(center_depth_location_, max_dents, &data_.center_depth[0].x);
   if (shape_location_ >= 0) glUniform4fv(shape_location_, max_dents, &data_.shape[0].x);
   if (count_location_ >= 0) glUniform1i(count_location_, data_.count);
+  if (surface_dent_location_ >= 0) glUniform1i(surface_dent_location_, data_.surface_dent);
+  if (surface_seed_location_ >= 0) glUniform1f(surface_seed_location_, data_.surface_seed);
 }
 
 }  // namespace palpate::gl

@@ -17,6 +17,7 @@
 #include "gl_test_context.hpp"
 #include "palpate/core/error.hpp"
 #include "palpate/core/shapes.hpp"
+#include "palpate/core/surface_patch.hpp"
 #include "palpate/gl/deform_uniforms.hpp"
 #include "palpate/gl/framebuffer.hpp"
 #include "palpate/gl/headless_context.hpp"
@@ -26,18 +27,20 @@ namespace palpate::gl {
 namespace {
 
 // A vertex shader that feeds the snippet's functions with each vertex and captures their results, in
-// the words of its GLSL version.
-std::string capture_vertex(const std::string& version) {
+// the words of its GLSL version; `along_surface`: the overloads that take the surface sample.
+std::string capture_vertex(const std::string& version, bool along_surface = false) {
   const bool old = version == "110" || version == "120";
   const std::string in = old ? "attribute" : "in", out = old ? "varying" : "out";
-  return "#version " + version + "\n" + in + " vec3 position;\n" + in + " vec3 normal;\n" + out +
-         " vec3 displaced;\n" + out + " vec3 perturbed;\n" + out + " vec3 fragment_displaced;\n" + R"glsl(
-void main() {
-  displaced = palpate_displace(position, normalize(normal));
-  perturbed = palpate_perturb_normal(normal, position);
+  const std::string surface = along_surface ? ", surface" : "";
+  return "#version " + version + "\n" + in + " vec3 position;\n" + in + " vec3 normal;\n" + in +
+         " vec4 surface;\n" + out + " vec3 displaced;\n" + out + " vec3 perturbed;\n" + out +
+         " vec3 fragment_displaced;\n" +
+         "void main() {\n  displaced = palpate_displace(position, normalize(normal)" + surface +
+         ");\n  perturbed = palpate_perturb_normal(normal, position" + surface + R"glsl();
   vec3 n = normalize(normal);
   fragment_displaced = position;
-  palpate_deform_fragment(fragment_displaced, n);
+  palpate_deform_fragment(fragment_displaced, n)glsl" +
+         surface + R"glsl();
   gl_Position = vec4(0.0);
 }
 )glsl";
@@ -77,16 +80,19 @@ struct Captured {
 };
 
 // Runs `mesh`'s vertices (as points, rasterizer off) through the snippet in the GLSL `version`, with
-// `dents` fed by DeformUniforms, on the current context.
+// `dents` fed by DeformUniforms, on the current context; with `surface_samples` (one per vertex), through
+// the functions that take them.
 Captured capture(const Mesh& mesh, std::span<const Dent> dents, int dent_slots = max_dents,
-                 const std::string& version = "450 core") {
+                 const std::string& version = "450 core", std::span<const glm::vec4> surface_samples = {}) {
   const GLuint program = glCreateProgram();
-  const GLuint vs = compile(GL_VERTEX_SHADER, insert_deform_glsl(capture_vertex(version), dent_slots));
+  const GLuint vs = compile(
+      GL_VERTEX_SHADER, insert_deform_glsl(capture_vertex(version, !surface_samples.empty()), dent_slots));
   const GLuint fs = compile(GL_FRAGMENT_SHADER, empty_fragment(version));
   glAttachShader(program, vs);
   glAttachShader(program, fs);
   glBindAttribLocation(program, 0, "position");
   glBindAttribLocation(program, 1, "normal");
+  glBindAttribLocation(program, 2, "surface");
   const char* varyings[] = {"displaced", "perturbed", "fragment_displaced"};
   glTransformFeedbackVaryings(program, 3, varyings, GL_INTERLEAVED_ATTRIBS);
   glLinkProgram(program);
@@ -98,9 +104,9 @@ Captured capture(const Mesh& mesh, std::span<const Dent> dents, int dent_slots =
   uniforms.set(dents);
 
   const std::size_t n = mesh.vertex_count();
-  GLuint vao = 0, buffers[3] = {};
+  GLuint vao = 0, buffers[4] = {};
   glCreateVertexArrays(1, &vao);
-  glCreateBuffers(3, buffers);
+  glCreateBuffers(4, buffers);
   glNamedBufferStorage(buffers[0], static_cast<GLsizeiptr>(n * sizeof(glm::vec3)), mesh.positions_mm.data(),
                        0);
   glNamedBufferStorage(buffers[1], static_cast<GLsizeiptr>(n * sizeof(glm::vec3)), mesh.normals.data(), 0);
@@ -110,6 +116,14 @@ Captured capture(const Mesh& mesh, std::span<const Dent> dents, int dent_slots =
     glEnableVertexArrayAttrib(vao, i);
     glVertexArrayAttribFormat(vao, i, 3, GL_FLOAT, GL_FALSE, 0);
     glVertexArrayAttribBinding(vao, i, i);
+  }
+  if (!surface_samples.empty()) {
+    glNamedBufferStorage(buffers[3], static_cast<GLsizeiptr>(n * sizeof(glm::vec4)), surface_samples.data(),
+                         0);
+    glVertexArrayVertexBuffer(vao, 2, buffers[3], 0, sizeof(glm::vec4));
+    glEnableVertexArrayAttrib(vao, 2);
+    glVertexArrayAttribFormat(vao, 2, 4, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vao, 2, 2);
   }
   const Framebuffer target({1, 1});  // a surfaceless context has no default framebuffer to draw with
   target.bind();
@@ -129,7 +143,7 @@ Captured capture(const Mesh& mesh, std::span<const Dent> dents, int dent_slots =
   glBindVertexArray(0);
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
   glDeleteVertexArrays(1, &vao);
-  glDeleteBuffers(3, buffers);
+  glDeleteBuffers(4, buffers);
   glDeleteProgram(program);
   glDeleteShader(vs);
   glDeleteShader(fs);
@@ -191,6 +205,30 @@ TEST_F(DentedSphere, PerturbedNormalsEqualTheCpuReference) {
   EXPECT_GT(largest_tilt, 20.0f);
 }
 
+// The geodesic falloff on the GPU against the CPU: the first dent along the surface of the bumpy sphere
+// (its bumps make the surface distance differ from the straight one), the others straight.
+TEST_F(DentedSphere, AlongTheSurfaceTheGpuEqualsTheCpuReference) {
+  SurfacePatch patch(mesh);
+  patch.compute(-1, dents[0].center_mm, dent_cutoff_sigmas * dents[0].sigma_mm);
+  std::vector<Dent> along = dents;
+  along[0].along_surface = true;
+  along[0].seed_radius_mm = patch.seed_radius_mm();
+  const Captured gpu = capture(mesh, along, max_dents, "450 core", patch.samples());
+  float worst_displacement = 0.0f, worst_angle = 0.0f, largest_change = 0.0f;
+  for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+    const glm::vec3 v = mesh.positions_mm[i], n = glm::normalize(mesh.normals[i]);
+    const glm::vec4 sample = patch.samples()[i];
+    const glm::vec3 cpu = displaced_position(v, n, along, sample);
+    worst_displacement = std::max(worst_displacement, glm::distance(gpu.displaced[i], cpu) / 4.0f);
+    worst_displacement = std::max(worst_displacement, glm::distance(gpu.fragment_displaced[i], cpu) / 4.0f);
+    worst_angle = std::max(worst_angle, angle_deg(gpu.perturbed[i], perturbed_normal(n, v, along, sample)));
+    largest_change = std::max(largest_change, glm::distance(cpu, displaced_position(v, n, dents)));
+  }
+  EXPECT_LE(worst_displacement, 1e-5f);
+  EXPECT_LE(worst_angle, 2e-3f);
+  EXPECT_GT(largest_change, 0.05f);  // the surface distance does change the dent here
+}
+
 TEST_F(DentedSphere, FewerSlotsThanDentsIgnoreTheRest) {
   const Captured gpu = capture(mesh, dents, 1);
   const std::span<const Dent> first(dents.data(), 1);
@@ -234,6 +272,25 @@ void expect_dialect_matches_the_cpu(const std::string& version, GlslDialect dial
   EXPECT_GT(moved, 50u) << version;
   EXPECT_LE(worst_position, 1e-4f) << version;
   EXPECT_LE(worst_angle, 1e-3f) << version;
+
+  // The first dent along the surface, from each vertex's surface sample.
+  SurfacePatch patch(mesh);
+  patch.compute(-1, dents[0].center_mm, dent_cutoff_sigmas * dents[0].sigma_mm);
+  Dent along[] = {dents[0], dents[1]};
+  along[0].along_surface = true;
+  along[0].seed_radius_mm = patch.seed_radius_mm();
+  const Captured surface = capture(mesh, along, 2, version, patch.samples());
+  worst_position = worst_angle = 0.0f;
+  for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+    const glm::vec3 v = mesh.positions_mm[i], n = glm::normalize(mesh.normals[i]);
+    const glm::vec4 sample = patch.samples()[i];
+    worst_position = std::max(worst_position,
+                              glm::distance(surface.displaced[i], displaced_position(v, n, along, sample)));
+    worst_angle =
+        std::max(worst_angle, angle_deg(surface.perturbed[i], perturbed_normal(n, v, along, sample)));
+  }
+  EXPECT_LE(worst_position, 1e-4f) << version << " along the surface";
+  EXPECT_LE(worst_angle, 2e-3f) << version << " along the surface";
 }
 
 TEST(DeformGlslDialects, OldGlslTakesUniformArrays) {
@@ -258,14 +315,17 @@ TEST(DeformBlockLayout, MatchesTheDriversStd140Offsets) {
   GLint size = 0;
   glGetActiveUniformBlockiv(program.id(), block, GL_UNIFORM_BLOCK_DATA_SIZE, &size);
   EXPECT_EQ(static_cast<std::size_t>(size), sizeof(DeformBlockData));
-  const char* names[] = {"palpate_dent_center_depth[0]", "palpate_dent_shape[0]", "palpate_dent_count"};
-  GLuint indices[3] = {};
-  glGetUniformIndices(program.id(), 3, names, indices);
-  GLint offsets[3] = {};
-  glGetActiveUniformsiv(program.id(), 3, indices, GL_UNIFORM_OFFSET, offsets);
+  const char* names[] = {"palpate_dent_center_depth[0]", "palpate_dent_shape[0]", "palpate_dent_count",
+                         "palpate_surface_dent", "palpate_surface_seed"};
+  GLuint indices[5] = {};
+  glGetUniformIndices(program.id(), 5, names, indices);
+  GLint offsets[5] = {};
+  glGetActiveUniformsiv(program.id(), 5, indices, GL_UNIFORM_OFFSET, offsets);
   EXPECT_EQ(offsets[0], static_cast<GLint>(offsetof(DeformBlockData, center_depth)));
   EXPECT_EQ(offsets[1], static_cast<GLint>(offsetof(DeformBlockData, shape)));
   EXPECT_EQ(offsets[2], static_cast<GLint>(offsetof(DeformBlockData, count)));
+  EXPECT_EQ(offsets[3], static_cast<GLint>(offsetof(DeformBlockData, surface_dent)));
+  EXPECT_EQ(offsets[4], static_cast<GLint>(offsetof(DeformBlockData, surface_seed)));
 }
 
 TEST(DeformBlockData, HoldsTheDerivedTermsOfEachDent) {

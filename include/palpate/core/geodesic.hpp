@@ -31,6 +31,11 @@ class GeodesicField {
   std::span<const std::uint32_t> reached() const noexcept { return reached_; }
   // A vertex's distance along the surface from the last compute(); +infinity beyond the radius.
   float distance_mm(std::uint32_t vertex) const noexcept;
+  // The triangles around a vertex (indices of Mesh::indices / 3).
+  std::span<const std::uint32_t> triangles_around(std::uint32_t vertex) const noexcept {
+    return {vertex_triangles_.data() + first_triangle_[vertex],
+            first_triangle_[vertex + 1] - first_triangle_[vertex]};
+  }
 
  private:
   void update(std::uint32_t vertex, std::uint32_t triangle);

@@ -19,6 +19,15 @@
 //     vec3 n = palpate_perturb_normal(normal_in, rest_in);   // unit, tilted into each dent
 // The CPU twins are palpate::displaced_position and palpate::perturbed_normal (palpate/core/deform.hpp);
 // tests hold them together.
+//
+// The geodesic falloff (a dent spreads along the surface, not through the air): pass each vertex's
+// surface sample (palpate::SurfacePatch, palpate/core/surface_patch.hpp: a vec4 attribute, its xyz
+// rotated into the shaders' space and its w scaled to its unit, surface_sample_in_space) on to the
+// fragment stage and call the overloads that take it:
+//     vec3 moved = palpate_displace(rest, direction, surface);
+//     vec3 n = palpate_perturb_normal(normal_in, rest_in, surface_in);
+// The first dent falls off along the surface where the data says so (Dent::along_surface, set by
+// DeformUniforms); the two-argument functions always use the straight line.
 #include <cstddef>
 #include <cstdint>
 #include <glm/vec4.hpp>
@@ -65,11 +74,14 @@ struct DeformBlockData {
   glm::vec4 center_depth[max_dents];  // xyz contact point c, w penetration p (lengths in the space's unit)
   glm::vec4 shape[max_dents];         // x (cutoff 4 sigma)^2, y 1/(2 sigma^2), z p / sigma^2, w sigma
   std::int32_t count;                 // dents in use, 0..max_dents
-  std::int32_t padding[3];
+  std::int32_t surface_dent;          // 1: the first dent falls off along the surface
+  float surface_seed;                 // its blend radius, max(Dent::seed_radius_mm, 1e-4 sigma)
+  std::int32_t padding;
 };
 static_assert(offsetof(DeformBlockData, center_depth) == 0);
 static_assert(offsetof(DeformBlockData, shape) == 16 * max_dents);
 static_assert(offsetof(DeformBlockData, count) == 32 * max_dents);
+static_assert(offsetof(DeformBlockData, surface_seed) == 32 * max_dents + 8);
 static_assert(sizeof(DeformBlockData) == 32 * max_dents + 16);
 
 // Fills the data from `dents`: the first max_dents are taken, the rest dropped. No allocation.

@@ -1,0 +1,156 @@
+// The geodesic falloff's per-vertex samples and the CPU deformation that reads them: on a plane they
+// give the straight-line dent; across a fold (a sheet bent back on itself 6 mm above, a sulcus
+// unrolled) the straight line dents the facing sheet and the surface samples leave it alone.
+#include "palpate/core/surface_patch.hpp"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <glm/geometric.hpp>
+#include <numbers>
+
+#include "palpate/core/deform.hpp"
+#include "palpate/core/shapes.hpp"
+
+namespace palpate {
+namespace {
+
+// A 100 x 100 mm grid (1 mm cells) bent about x = 40 into a U: the lower sheet at z = 0 up to x = 40,
+// a half circle of radius 3 mm, and the upper sheet at z = 6 coming back over it.
+Mesh make_fold() {
+  Mesh mesh = make_grid(100.0f, 100);
+  constexpr float bend_start = 40.0f, radius = 3.0f;
+  const float half_turn = std::numbers::pi_v<float> * radius;
+  for (glm::vec3& p : mesh.positions_mm) {
+    const float s = p.x + 50.0f;  // arc length along the sheet, 0..100
+    if (s <= bend_start) {
+      p = {s, p.y, 0.0f};
+    } else if (s <= bend_start + half_turn) {
+      const float angle = (s - bend_start) / radius;
+      p = {bend_start + radius * std::sin(angle), p.y, radius - radius * std::cos(angle)};
+    } else {
+      p = {bend_start - (s - bend_start - half_turn), p.y, 2.0f * radius};
+    }
+  }
+  compute_vertex_normals(mesh);
+  return mesh;
+}
+
+// The mesh with three vertices of its own per triangle (flat-shaded export).
+Mesh split(const Mesh& mesh) {
+  Mesh out;
+  for (const std::uint32_t i : mesh.indices) {
+    out.indices.push_back(std::uint32_t(out.positions_mm.size()));
+    out.positions_mm.push_back(mesh.positions_mm[i]);
+  }
+  compute_vertex_normals(out);
+  return out;
+}
+
+TEST(SurfacePatch, OnAPlaneTheSamplesAreTheStraightLineDistanceAndDirection) {
+  const Mesh grid = make_grid(100.0f, 100);
+  SurfacePatch patch(grid);
+  const glm::vec3 contact(0.3f, -0.4f, 0.0f);
+  patch.compute(-1, contact, 16.0f);
+  EXPECT_NEAR(float(patch.size()), std::numbers::pi_v<float> * 16.0f * 16.0f, 60.0f);
+  float worst_distance = 0.0f, worst_angle_deg = 0.0f;
+  for (std::size_t v = 0; v < grid.vertex_count(); ++v) {
+    const glm::vec4 sample = patch.samples()[v];
+    const glm::vec3 to_contact = contact - grid.positions_mm[v];
+    const float straight = glm::length(to_contact);
+    if (straight > 16.5f) {
+      EXPECT_EQ(sample, no_surface_sample) << "vertex " << v;
+      continue;
+    }
+    if (sample.w == surface_far_mm) continue;  // just beyond the radius along the surface
+    worst_distance = std::max(worst_distance, std::abs(sample.w - straight));
+    if (straight > 2.0f) {
+      const float cosine = std::clamp(glm::dot(glm::vec3(sample), to_contact / straight), -1.0f, 1.0f);
+      worst_angle_deg = std::max(worst_angle_deg, std::acos(cosine) * 180.0f / std::numbers::pi_v<float>);
+    }
+  }
+  EXPECT_LT(worst_distance, 0.12f);  // measured 0.087 mm
+  EXPECT_LT(worst_angle_deg, 5.0f);  // measured 3.9 degrees (the distances' own error over 1 mm edges)
+  std::printf("plane: distance error max %.3f mm, direction error max %.2f deg\n", worst_distance,
+              worst_angle_deg);
+}
+
+TEST(SurfacePatch, ChangedCoversTheLastPatchAndTheNewOne) {
+  const Mesh grid = make_grid(100.0f, 100);
+  SurfacePatch patch(grid);
+  patch.compute(-1, {-30.0f, 0.0f, 0.0f}, 8.0f);  // the triangle found by a scan
+  const auto first = patch.samples();
+  std::vector<glm::vec4> before(first.begin(), first.end());
+  patch.compute(-1, {30.0f, 0.0f, 0.0f}, 8.0f);
+  const SurfacePatch::Range changed = patch.changed();
+  for (std::uint32_t v = 0; v < grid.vertex_count(); ++v) {
+    if (before[v] != patch.samples()[v]) {
+      EXPECT_GE(v, changed.first);
+      EXPECT_LT(v, changed.first + changed.count);
+    }
+  }
+  EXPECT_GT(std::count_if(before.begin(), before.end(), [](glm::vec4 s) { return s.w < 8.0f; }), 150);
+  patch.clear();
+  for (const glm::vec4 sample : patch.samples()) ASSERT_EQ(sample, no_surface_sample);
+}
+
+TEST(SurfacePatch, SplitCornersShareOneSampleAndTheFrontCrossesTheirSeams) {
+  const Mesh grid = split(make_grid(40.0f, 40));
+  SurfacePatch patch(grid);
+  const glm::vec3 contact(0.2f, 0.1f, 0.0f);
+  patch.compute(-1, contact, 10.0f);
+  std::size_t sampled = 0;
+  for (std::size_t v = 0; v < grid.vertex_count(); ++v) {
+    const float straight = glm::distance(grid.positions_mm[v], contact);
+    if (straight < 9.5f) {
+      ++sampled;
+      EXPECT_NEAR(patch.samples()[v].w, straight, 0.15f) << "vertex " << v;
+    }
+  }
+  EXPECT_GT(sampled, 6u * 250u);  // six corners per interior vertex, about pi 9.5^2 vertices
+}
+
+TEST(SurfacePatch, AcrossAFoldOnlyTheStraightLineDentsTheFacingSheet) {
+  const Mesh fold = make_fold();
+  const glm::vec3 contact(30.0f, 0.0f, 0.0f);  // on the lower sheet, 10 mm before the bend
+  SurfacePatch patch(fold);
+  constexpr float sigma = 4.0f, depth = 3.0f;
+  patch.compute(-1, contact, dent_cutoff_sigmas * sigma);
+  Dent straight{contact, depth, sigma};
+  Dent along = straight;
+  along.along_surface = true;
+  along.seed_radius_mm = patch.seed_radius_mm();
+  float facing_straight = 0.0f, facing_along = 0.0f, near_difference = 0.0f;
+  for (std::size_t v = 0; v < fold.vertex_count(); ++v) {
+    const glm::vec3 p = fold.positions_mm[v];
+    const float g_straight = dent_displacement(p, {&straight, 1});
+    const float g_along = dent_displacement(p, {&along, 1}, patch.samples()[v]);
+    if (p.z > 5.9f) {  // the upper sheet, 6 mm above the contact
+      facing_straight = std::max(facing_straight, g_straight);
+      facing_along = std::max(facing_along, g_along);
+    } else if (p.z == 0.0f && p.x < 38.0f) {  // the lower sheet, flat: both distances agree
+      near_difference = std::max(near_difference, std::abs(g_straight - g_along));
+    }
+  }
+  EXPECT_GT(facing_straight, 0.3f * depth);  // exp(-36 / 32) = 0.32 of p
+  EXPECT_EQ(facing_along, 0.0f);
+  EXPECT_LT(near_difference, 0.01f * depth);
+  std::printf(
+      "fold: facing sheet moved %.3f (straight) and %.3f (along the surface) of p; flat part differs "
+      "by %.4f of p\n",
+      facing_straight / depth, facing_along / depth, near_difference / depth);
+
+  // The normal tilts toward the contact along the sheet, and not at all on the facing sheet.
+  const glm::vec3 beside(33.0f, 0.0f, 0.0f);
+  const std::uint32_t v = std::uint32_t(
+      std::find(fold.positions_mm.begin(), fold.positions_mm.end(), beside) - fold.positions_mm.begin());
+  ASSERT_LT(v, fold.vertex_count());
+  const glm::vec3 tilted = perturbed_normal({0, 0, 1}, beside, {&along, 1}, patch.samples()[v]);
+  const glm::vec3 reference = perturbed_normal({0, 0, 1}, beside, {&straight, 1});
+  EXPECT_LT(glm::distance(tilted, reference), 0.01f);
+  EXPECT_LT(tilted.x, -0.1f);  // toward -x, where the contact is
+}
+
+}  // namespace
+}  // namespace palpate
