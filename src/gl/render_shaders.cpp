@@ -23,6 +23,12 @@ out vec3 v_normal;
 layout(location = 2) in vec3 color;
 out vec3 v_color;
 #endif
+#ifdef PALPATE_DEFORM
+// The geodesic falloff's surface sample (object frame): read only where the first dent is marked along
+// the surface; else the attribute's constant value, unused.
+layout(location = 4) in vec4 surface;
+out vec4 v_surface;
+#endif
 
 void main() {
   vec3 world = (model * vec4(position, 1.0)).xyz;
@@ -33,7 +39,8 @@ void main() {
   v_color = color;
 #endif
 #ifdef PALPATE_DEFORM
-  world = palpate_displace(world, normalize(normal_matrix * direction));
+  v_surface = vec4(normal_matrix * surface.xyz, surface.w);
+  world = palpate_displace(world, normalize(normal_matrix * direction), v_surface);
 #endif
   gl_Position = view_projection * vec4(world, 1.0);
 }
@@ -45,6 +52,9 @@ void main() {
 constexpr std::string_view fragment_body = R"glsl(
 in vec3 v_world;
 in vec3 v_normal;
+#ifdef PALPATE_DEFORM
+in vec4 v_surface;
+#endif
 #ifdef PALPATE_VERTEX_COLORS
 in vec3 v_color;
 #else
@@ -71,7 +81,7 @@ void main() {
   vec3 position = v_world;
 #ifdef PALPATE_DEFORM
   vec3 n = v_normal;
-  palpate_deform_fragment(position, n);
+  palpate_deform_fragment(position, n, v_surface);
 #else
   vec3 n = normalize(v_normal);
 #endif

@@ -20,6 +20,7 @@
 #include "occlusion_proxy.hpp"
 #include "palpate/core/error.hpp"
 #include "palpate/core/shapes.hpp"
+#include "palpate/core/surface_patch.hpp"
 #include "palpate/gl/deform_glsl.hpp"
 #include "palpate/gl/shader_program.hpp"
 #include "render_shaders.hpp"
@@ -30,6 +31,7 @@ namespace {
 
 constexpr std::size_t triangles_per_cluster = 64;
 constexpr GLuint attribute_position = 0, attribute_normal = 1, attribute_color = 2, attribute_direction = 3;
+constexpr GLuint attribute_surface = 4;
 constexpr float occlusion_margin_mm = 0.5f;
 
 // One linked program and where its uniforms are.
@@ -227,6 +229,44 @@ struct DentBuffer {
   }
 };
 
+// The geodesic falloff of one object: its patch, marched on the CPU each frame, and the per-vertex
+// surface samples in a vertex buffer (attribute_surface of the object's vertex array), of which each frame
+// uploads the vertices the patch changed.
+struct SurfaceFalloff {
+  SurfacePatch patch;
+  GLuint buffer = 0;
+
+  SurfaceFalloff(const Mesh& mesh, GLuint vertex_array) : patch(mesh) {
+    glCreateBuffers(1, &buffer);
+    glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(patch.samples().size_bytes()),
+                         patch.samples().data(), GL_DYNAMIC_STORAGE_BIT);
+    glVertexArrayVertexBuffer(vertex_array, 3, buffer, 0, sizeof(glm::vec4));
+    glEnableVertexArrayAttrib(vertex_array, attribute_surface);
+    glVertexArrayAttribFormat(vertex_array, attribute_surface, 4, GL_FLOAT, GL_FALSE, 0);
+    glVertexArrayAttribBinding(vertex_array, attribute_surface, 3);
+  }
+  ~SurfaceFalloff() {
+    if (a_context_is_current()) glDeleteBuffers(1, &buffer);
+  }
+  SurfaceFalloff(const SurfaceFalloff&) = delete;
+  SurfaceFalloff& operator=(const SurfaceFalloff&) = delete;
+
+  // Marches from `dent` (world) on `triangle` (the object's, in the renderer's order; -1: unknown) and
+  // uploads what changed; the dent then falls off along the surface.
+  void update(Dent& dent, const glm::mat4& transform, std::int64_t triangle) {
+    const glm::vec3 point = glm::vec3(glm::inverse(transform) * glm::vec4(dent.center_mm, 1.0f));
+    patch.compute(triangle, point, dent_cutoff_sigmas * dent.sigma_mm);
+    const SurfacePatch::Range changed = patch.changed();
+    if (changed.count > 0) {
+      glNamedBufferSubData(buffer, static_cast<GLintptr>(changed.first * sizeof(glm::vec4)),
+                           static_cast<GLsizeiptr>(changed.count * sizeof(glm::vec4)),
+                           patch.samples().data() + changed.first);
+    }
+    dent.along_surface = true;
+    dent.seed_radius_mm = patch.seed_radius_mm();
+  }
+};
+
 // An occlusion query object.
 struct Query {
   GLuint id = 0;
@@ -278,7 +318,10 @@ struct RenderObject {
   DentBuffer dent_buffer;
   std::array<Dent, max_dents> dents{};
   int dent_count = 0;
-  DrawRanges reached, unreached;  // per-frame scratch
+  std::int64_t first_dent_triangle = -1;         // the first dent's triangle (renderer's order), -1: unknown
+  std::vector<std::uint32_t> triangle_moved_to;  // the scene mesh's triangle t is triangle_moved_to[t] here
+  std::unique_ptr<SurfaceFalloff> surface;       // made when the material first asks for the geodesic falloff
+  DrawRanges reached, unreached;                 // per-frame scratch
 };
 
 }  // namespace
@@ -300,9 +343,9 @@ struct Renderer::State {
                ? objects[static_cast<std::size_t>(index)].get()
                : nullptr;
   }
-  // Adds a dent to the object's list; returns 1 when the dent is dropped (no such object, or its list
-  // is full).
-  int add_dent(int object_index, const Dent& dent) noexcept;
+  // Adds a dent to the object's list, with the triangle it lies on (the scene mesh's, -1: unknown);
+  // returns 1 when the dent is dropped (no such object, or its list is full).
+  int add_dent(int object_index, const Dent& dent, int triangle) noexcept;
   void render(const glm::mat4& view, const glm::mat4& projection, const DrawParams& options,
               std::span<const Contact> probes, DrawResult& result);
   // Draws the object's proxy, padded by its dents, into its occlusion query (front faces, no colour, no
@@ -338,13 +381,16 @@ void Renderer::upload(const Scene& scene) {
     object->mesh = source.mesh;
     object->transform = source.transform;
     object->material = source.material;
-    object->clusters =
-        cluster_triangles(object->mesh.indices, object->mesh.positions_mm, triangles_per_cluster);
+    object->clusters = cluster_triangles(object->mesh.indices, object->mesh.positions_mm,
+                                         triangles_per_cluster, &object->triangle_moved_to);
     order_vertices_by_first_use(object->mesh);
     for (const TriangleCluster& cluster : object->clusters) {
       object->cluster_centers.push_back(glm::vec3(object->transform * glm::vec4(cluster.center, 1.0f)));
     }
     object->gpu = std::make_unique<GpuMesh>(object->mesh);
+    if (source.material.falloff == Falloff::geodesic) {
+      object->surface = std::make_unique<SurfaceFalloff>(object->mesh, object->gpu->vertex_array);
+    }
     object->world_bounds = world_bounds(source);
     objects.push_back(std::move(object));
   }
@@ -388,7 +434,11 @@ void Renderer::set_material(std::size_t object, const Material& material) {
     throw Error("renderer: set_material: sigma must be positive and finite, got " +
                 std::to_string(material.sigma_mm));
   }
-  state_->objects[object]->material = material;
+  RenderObject& target = *state_->objects[object];
+  if (material.falloff == Falloff::geodesic && !target.surface) {
+    target.surface = std::make_unique<SurfaceFalloff>(target.mesh, target.gpu->vertex_array);
+  }
+  target.material = material;
 }
 
 namespace {
@@ -508,7 +558,9 @@ DrawResult Renderer::draw(const glm::mat4& view, const glm::mat4& projection,
     if (!contact.in_contact()) continue;
     const RenderObject* object = state_->object_at(contact.object);
     result.dropped_dents +=
-        object ? state_->add_dent(contact.object, dent_from_contact(contact, object->material.sigma_mm)) : 1;
+        object ? state_->add_dent(contact.object, dent_from_contact(contact, object->material.sigma_mm),
+                                  contact.triangle)
+               : 1;
   }
   state_->render(view, projection, options, options.draw_probe ? contacts : std::span<const Contact>(),
                  result);
@@ -519,15 +571,24 @@ DrawResult Renderer::draw(const glm::mat4& view, const glm::mat4& projection,
                           std::span<const ObjectDent> dents, const DrawParams& options) {
   DrawResult result;
   for (auto& object : state_->objects) object->dent_count = 0;
-  for (const ObjectDent& entry : dents) result.dropped_dents += state_->add_dent(entry.object, entry.dent);
+  for (const ObjectDent& entry : dents) {
+    result.dropped_dents += state_->add_dent(entry.object, entry.dent, entry.triangle);
+  }
   state_->render(view, projection, options, {}, result);
   return result;
 }
 
-int Renderer::State::add_dent(int object_index, const Dent& dent) noexcept {
+int Renderer::State::add_dent(int object_index, const Dent& dent, int triangle) noexcept {
   RenderObject* object = object_at(object_index);
   if (!object || object->dent_count == max_dents) return 1;
-  object->dents[static_cast<std::size_t>(object->dent_count++)] = dent;
+  if (object->dent_count == 0) {
+    object->first_dent_triangle = triangle >= 0 && std::size_t(triangle) < object->triangle_moved_to.size()
+                                      ? object->triangle_moved_to[std::size_t(triangle)]
+                                      : -1;
+  }
+  Dent& added = object->dents[static_cast<std::size_t>(object->dent_count++)];
+  added = dent;
+  added.along_surface = false;  // the geodesic falloff is the object's material's to choose
   return 0;
 }
 
@@ -586,6 +647,10 @@ void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection,
     const std::span<const Dent> object_dents(object.dents.data(),
                                              static_cast<std::size_t>(object.dent_count));
     if (object.dent_count > 0) ++result.deformed_objects;
+    const bool along_surface = object.material.falloff == Falloff::geodesic && object.surface;
+    if (object.dent_count > 0 && along_surface && options.deformation != Deformation::none) {
+      object.surface->update(object.dents[0], object.transform, object.first_dent_triangle);
+    }
 
     if (object.dent_count == 0 || options.deformation == Deformation::none) {
       plain.set_object(object.transform, object.material.color);
@@ -593,7 +658,8 @@ void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection,
       glBindVertexArray(object.gpu->vertex_array);
       draw_all(*object.gpu);
     } else if (options.deformation == Deformation::cpu_naive) {
-      deform_mesh(object.mesh, object.transform, object_dents, object.deformed);
+      deform_mesh(object.mesh, object.transform, object_dents, object.deformed,
+                  along_surface ? object.surface->patch.samples() : std::span<const glm::vec4>());
       if (!object.naive) {
         object.naive = std::make_unique<NaiveBuffers>(object.mesh.vertex_count(), object.gpu->index_buffer,
                                                       object.gpu->color_buffer);

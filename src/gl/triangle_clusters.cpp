@@ -22,7 +22,8 @@ std::uint32_t spread_bits(std::uint32_t v) {
 
 std::vector<TriangleCluster> cluster_triangles(std::vector<std::uint32_t>& indices,
                                                std::span<const glm::vec3> positions,
-                                               std::size_t triangles_per_cluster) {
+                                               std::size_t triangles_per_cluster,
+                                               std::vector<std::uint32_t>* moved_to) {
   const std::size_t triangles = indices.size() / 3;
   if (triangles == 0 || positions.empty()) return {};
   glm::vec3 low = positions[0], high = positions[0];
@@ -47,6 +48,10 @@ std::vector<TriangleCluster> cluster_triangles(std::vector<std::uint32_t>& indic
                 sorted.begin() + 3 * t);
   }
   indices = std::move(sorted);
+  if (moved_to) {
+    moved_to->resize(triangles);
+    for (std::size_t t = 0; t < triangles; ++t) (*moved_to)[order[t].second] = static_cast<std::uint32_t>(t);
+  }
 
   std::vector<TriangleCluster> clusters;
   clusters.reserve(triangles / triangles_per_cluster + 1);

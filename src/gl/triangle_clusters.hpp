@@ -20,10 +20,12 @@ struct TriangleCluster {
 };
 
 // Reorders the triangles of `indices` (three per triangle) along a Morton curve of their centroids and
-// cuts them into clusters of at most `triangles_per_cluster`. Allocates.
+// cuts them into clusters of at most `triangles_per_cluster`; `moved_to`, if given, receives each
+// triangle's new place (moved_to[old] = new). Allocates.
 std::vector<TriangleCluster> cluster_triangles(std::vector<std::uint32_t>& indices,
                                                std::span<const glm::vec3> positions,
-                                               std::size_t triangles_per_cluster);
+                                               std::size_t triangles_per_cluster,
+                                               std::vector<std::uint32_t>* moved_to = nullptr);
 
 // Renumbers the vertices in the order the triangles first use them (positions, normals and colours
 // move along), so that the vertices of neighbouring triangles sit together in the vertex buffer: fewer

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <map>
+#include <numbers>
 #include <tuple>
 
 #include "palpate/core/shapes.hpp"
@@ -112,6 +113,25 @@ Mesh split_flat(const Mesh& mesh) {
     }
   }
   return flat;
+}
+
+Mesh make_folded_sheet() {
+  Mesh mesh = make_grid(100.0f, 100);
+  constexpr float bend_start = 40.0f, radius = 3.0f;
+  const float half_turn = std::numbers::pi_v<float> * radius;
+  for (glm::vec3& p : mesh.positions_mm) {
+    const float s = p.x + 50.0f;  // arc length along the sheet, 0..100
+    if (s <= bend_start) {
+      p = {s, p.y, 0.0f};
+    } else if (s <= bend_start + half_turn) {
+      const float angle = (s - bend_start) / radius;
+      p = {bend_start + radius * std::sin(angle), p.y, radius - radius * std::cos(angle)};
+    } else {
+      p = {bend_start - (s - bend_start - half_turn), p.y, 2.0f * radius};
+    }
+  }
+  compute_vertex_normals(mesh);
+  return mesh;
 }
 
 }  // namespace palpate::testing

@@ -12,41 +12,10 @@
 
 #include "palpate/core/deform.hpp"
 #include "palpate/core/shapes.hpp"
+#include "palpate/testing/test_shapes.hpp"
 
 namespace palpate {
 namespace {
-
-// A 100 x 100 mm grid (1 mm cells) bent about x = 40 into a U: the lower sheet at z = 0 up to x = 40,
-// a half circle of radius 3 mm, and the upper sheet at z = 6 coming back over it.
-Mesh make_fold() {
-  Mesh mesh = make_grid(100.0f, 100);
-  constexpr float bend_start = 40.0f, radius = 3.0f;
-  const float half_turn = std::numbers::pi_v<float> * radius;
-  for (glm::vec3& p : mesh.positions_mm) {
-    const float s = p.x + 50.0f;  // arc length along the sheet, 0..100
-    if (s <= bend_start) {
-      p = {s, p.y, 0.0f};
-    } else if (s <= bend_start + half_turn) {
-      const float angle = (s - bend_start) / radius;
-      p = {bend_start + radius * std::sin(angle), p.y, radius - radius * std::cos(angle)};
-    } else {
-      p = {bend_start - (s - bend_start - half_turn), p.y, 2.0f * radius};
-    }
-  }
-  compute_vertex_normals(mesh);
-  return mesh;
-}
-
-// The mesh with three vertices of its own per triangle (flat-shaded export).
-Mesh split(const Mesh& mesh) {
-  Mesh out;
-  for (const std::uint32_t i : mesh.indices) {
-    out.indices.push_back(std::uint32_t(out.positions_mm.size()));
-    out.positions_mm.push_back(mesh.positions_mm[i]);
-  }
-  compute_vertex_normals(out);
-  return out;
-}
 
 TEST(SurfacePatch, OnAPlaneTheSamplesAreTheStraightLineDistanceAndDirection) {
   const Mesh grid = make_grid(100.0f, 100);
@@ -96,7 +65,7 @@ TEST(SurfacePatch, ChangedCoversTheLastPatchAndTheNewOne) {
 }
 
 TEST(SurfacePatch, SplitCornersShareOneSampleAndTheFrontCrossesTheirSeams) {
-  const Mesh grid = split(make_grid(40.0f, 40));
+  const Mesh grid = testing::split_flat(make_grid(40.0f, 40));
   SurfacePatch patch(grid);
   const glm::vec3 contact(0.2f, 0.1f, 0.0f);
   patch.compute(-1, contact, 10.0f);
@@ -112,7 +81,7 @@ TEST(SurfacePatch, SplitCornersShareOneSampleAndTheFrontCrossesTheirSeams) {
 }
 
 TEST(SurfacePatch, AcrossAFoldOnlyTheStraightLineDentsTheFacingSheet) {
-  const Mesh fold = make_fold();
+  const Mesh fold = testing::make_folded_sheet();
   const glm::vec3 contact(30.0f, 0.0f, 0.0f);  // on the lower sheet, 10 mm before the bend
   SurfacePatch patch(fold);
   constexpr float sigma = 4.0f, depth = 3.0f;

@@ -13,22 +13,26 @@
 
 #include "gl_test_context.hpp"
 #include "palpate/core/shapes.hpp"
+#include "palpate/core/surface_patch.hpp"
 #include "palpate/gl/deform_glsl.hpp"
 #include "palpate/gl/framebuffer.hpp"
 #include "palpate/gl/shader_program.hpp"
+#include "palpate/testing/test_shapes.hpp"
 
 namespace palpate::gl {
 namespace {
 
 constexpr int size = 512;
 
-Scene scene_of(Mesh mesh, float sigma_mm = 5.0f, const glm::mat4& transform = glm::mat4(1.0f)) {
+Scene scene_of(Mesh mesh, float sigma_mm = 5.0f, const glm::mat4& transform = glm::mat4(1.0f),
+               Falloff falloff = Falloff::euclidean) {
   Scene scene;
   SceneObject object;
   object.name = "test mesh";
   object.mesh = std::move(mesh);
   object.transform = transform;
   object.material.sigma_mm = sigma_mm;
+  object.material.falloff = falloff;
   scene.objects.push_back(std::move(object));
   return scene;
 }
@@ -98,11 +102,23 @@ struct Tolerance {
 // exact area-weighted normals of the deformed triangles, in world space) drawn undeformed, its vertex
 // normals interpolated. Over all covered pixels, and over those inside the dent alone (where the
 // reference leans more than 1 degree off the undeformed normal). The object stands at `transform`.
+// With the geodesic falloff the reference reads the surface samples of a SurfacePatch of its own.
 void expect_true_normals(const Mesh& mesh, const Dent& dent, const Camera& camera, Tolerance all_pixels,
-                         Tolerance dent_pixels, const glm::mat4& transform = glm::mat4(1.0f)) {
-  const Scene original = scene_of(mesh, dent.sigma_mm, transform);
+                         Tolerance dent_pixels, const glm::mat4& transform = glm::mat4(1.0f),
+                         Falloff falloff = Falloff::euclidean) {
+  const Scene original = scene_of(mesh, dent.sigma_mm, transform, falloff);
   Mesh deformed;
-  deform_mesh(mesh, transform, {&dent, 1}, deformed);
+  if (falloff == Falloff::geodesic) {
+    SurfacePatch patch(mesh);
+    patch.compute(-1, glm::vec3(glm::inverse(transform) * glm::vec4(dent.center_mm, 1.0f)),
+                  dent_cutoff_sigmas * dent.sigma_mm);
+    Dent along = dent;
+    along.along_surface = true;
+    along.seed_radius_mm = patch.seed_radius_mm();
+    deform_mesh(mesh, transform, {&along, 1}, deformed, patch.samples());
+  } else {
+    deform_mesh(mesh, transform, {&dent, 1}, deformed);
+  }
   const Scene reference_scene = scene_of(deformed, dent.sigma_mm);
   const ObjectDent dents[] = {{0, dent}};
 
@@ -163,6 +179,17 @@ TEST(RendererNormals, RotatedPlaneMatchesTheTrueNormals) {
                       {0.065f, 0.25f}, transform);
 }
 
+TEST(RendererNormals, AlongTheSurfaceTheRotatedPlaneMatchesTheTrueNormals) {
+  test::gl_context();
+  const Mesh plane = make_grid(80.0f, 240);
+  const glm::mat4 transform = glm::rotate(glm::translate(glm::mat4(1.0f), {4.0f, -3.0f, 2.0f}),
+                                          glm::radians(35.0f), glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f)));
+  const glm::vec3 contact = glm::vec3(transform * glm::vec4(3.0f, 2.0f, 0.0f, 1.0f));
+  expect_true_normals(plane, Dent{contact, 3.0f, 5.0f},
+                      looking_at({0.0f, -60.0f, 60.0f}, {4.0f, -3.0f, 2.0f}), {0.025f, 0.27f},
+                      {0.065f, 0.25f}, transform, Falloff::geodesic);
+}
+
 TEST(RendererNormals, FineSphereMatchesTheTrueNormals) {
   test::gl_context();
   const Mesh sphere = make_sphere(40.0f, 80000);
@@ -173,7 +200,7 @@ TEST(RendererNormals, FineSphereMatchesTheTrueNormals) {
                       {0.3f, 4.0f}, {0.9f, 4.3f});
 }
 
-struct Bumpy : testing::Test {
+struct Bumpy : ::testing::Test {
   Scene scene = scene_of(make_bumpy_sphere(40.0f, 2.5f, 40000), 6.0f);
   Camera camera = looking_at({0.0f, -140.0f, 40.0f}, {0, 0, 0});
   glm::vec3 contact = glm::normalize(glm::vec3(0.1f, -1.0f, 0.3f)) * 41.0f;
@@ -290,6 +317,62 @@ TEST(RendererDents, AContactDentsOnlyTheObjectItTouchesWithThatObjectsSigma) {
   // The same dent given to the left object explicitly changes the left half.
   const ObjectDent left_dent[] = {{0, {{-40.0f, -30.0f, 0.0f}, 4.0f, 8.0f}}};
   EXPECT_NE(undeformed, frame([&] { renderer.draw(camera.view, camera.projection, left_dent, options); }));
+}
+
+// The paper's named limit, in pixels: a press on the lower bank of a fold (a sulcus unrolled, 6 mm
+// across through the air, 29 mm along the surface) seen from below, where only the upper bank faces
+// the camera. The straight-line falloff moves and tilts the upper bank; along the surface it stays
+// exactly as it was, through the Contact overload (with its triangle) and the ObjectDent one (without).
+TEST(RendererFalloff, AlongTheSurfaceAPressLeavesTheFacingBankOfAFoldAlone) {
+  test::gl_context();
+  const Mesh fold = testing::make_folded_sheet();
+  const Camera below{glm::lookAt(glm::vec3(30.0f, 0.0f, -70.0f), glm::vec3(30.0f, 0.0f, 6.0f), {0, 1, 0}),
+                     glm::perspective(glm::radians(40.0f), 1.0f, 5.0f, 1000.0f)};
+  Contact press;
+  press.object = 0;
+  press.point_mm = {30.2f, 0.3f, 0.0f};
+  press.hip_mm = press.point_mm - glm::vec3(0.0f, 0.0f, 3.0f);
+  press.normal = {0.0f, 0.0f, 1.0f};
+  press.depth_mm = 3.0f;
+  for (std::uint32_t t = 0; 3 * t < fold.indices.size(); ++t) {  // the triangle under the press
+    const glm::vec3 a = fold.positions_mm[fold.indices[3 * t]],
+                    b = fold.positions_mm[fold.indices[3 * t + 1]],
+                    c = fold.positions_mm[fold.indices[3 * t + 2]];
+    const glm::vec3 q = press.point_mm;
+    const auto side = [&](glm::vec3 u, glm::vec3 v) {
+      return (v.x - u.x) * (q.y - u.y) - (v.y - u.y) * (q.x - u.x);
+    };
+    if (a.z == 0.0f && b.z == 0.0f && c.z == 0.0f && side(a, b) >= 0 && side(b, c) >= 0 && side(c, a) >= 0)
+      press.triangle = int(t);
+  }
+  ASSERT_GE(press.triangle, 0);
+  const ObjectDent dent[] = {{0, dent_from_contact(press, 4.0f)}};
+  DrawParams options;
+  options.draw_probe = false;
+  const auto undeformed = render<std::uint8_t>(scene_of(fold, 4.0f), below, {}, options);
+  const auto straight = render<std::uint8_t>(scene_of(fold, 4.0f), below, dent, options);
+  const Scene geodesic = scene_of(fold, 4.0f, glm::mat4(1.0f), Falloff::geodesic);
+  const auto along = render<std::uint8_t>(geodesic, below, dent, options);
+  const Framebuffer target({size, size, ColorFormat::rgba8});
+  target.bind();
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  Renderer renderer;
+  renderer.upload(geodesic);
+  renderer.draw(below.view, below.projection, {&press, 1}, options);
+  const auto along_from_contact = target.read_rgba8();
+
+  std::size_t covered = 0, changed_straight = 0;
+  for (std::size_t i = 0; i < undeformed.size(); i += 4) {
+    covered += undeformed[i + 3] != 0;
+    changed_straight += !std::equal(&undeformed[i], &undeformed[i] + 4, &straight[i]);
+  }
+  EXPECT_GT(covered, 100000u);
+  EXPECT_GT(changed_straight, 3000u) << "the straight line should dent the facing bank";
+  EXPECT_EQ(along, undeformed);
+  EXPECT_EQ(along_from_contact, undeformed);
+  std::printf(
+      "fold seen from below: %zu px covered; the press changes %zu px straight, none along the surface\n",
+      covered, changed_straight);
 }
 
 TEST(RendererDents, DentsPastTheLimitOrForNoObjectAreDroppedAndCounted) {

@@ -9,6 +9,11 @@
 // object's Material::sigma_mm, as in the paper; or the caller passes ObjectDents, a dent per object,
 // explicitly. At most max_dents apply to one object; the rest are dropped and counted.
 //
+// An object whose Material::falloff is geodesic spreads its first dent along its surface: each frame the
+// renderer marches over the patch that dent reaches (SurfacePatch: about 0.1 to 1 ms on one core, see
+// docs/benchmarks.md) and uploads the vertices it changed; further dents on the object use the straight
+// line. Dent::along_surface in what the caller passes is ignored: the material decides.
+//
 // The deforming shaders are those of deform_glsl.hpp (world space in both stages), compiled for 1, 2, 4
 // or 8 dents; the triangles beyond every dent's 4-sigma reach are drawn by the plain shader, which gives
 // the same pixels (the plain and deforming shaders differ only by the deformation). The GL state it
@@ -87,6 +92,9 @@ struct DrawParams {
 struct ObjectDent {
   int object = -1;  // scene object index
   Dent dent;
+  // The triangle of the object's mesh the dent's centre lies on (Contact::triangle), for the geodesic
+  // falloff; -1: unknown, found by a scan of the mesh (about 1 ms per 100,000 triangles).
+  int triangle = -1;
 };
 
 struct DrawResult {

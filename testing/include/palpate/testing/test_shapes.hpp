@@ -25,6 +25,12 @@ Mesh make_comb(int teeth, float tooth_width_mm, float gap_mm, float tooth_height
 // `segments` steps around the axis and `sides` around the tube; smooth (shared vertices).
 Mesh make_torus(float major_mm, float minor_mm, int segments, int sides);
 
+// A sulcus unrolled: a 100 x 100 mm sheet (1 mm cells) bent back on itself, the lower part at z = 0 for
+// x in [0, 40], a half cylinder of radius 3 mm about the y axis at x = 40, z = 3, and the upper part at
+// z = 6 back over the lower. Points facing across the gap are 6 mm apart through the air and 20 mm or
+// more apart along the surface. Open, smooth (shared vertices); the lower part faces +z, the upper -z.
+Mesh make_folded_sheet();
+
 // The mesh flat-shaded as exporters write it: three vertices of its own for every triangle, each with
 // the face's normal (so no two triangles share a vertex, though their corners coincide).
 Mesh split_flat(const Mesh& mesh);
