@@ -18,7 +18,7 @@ namespace palpate::cli {
 namespace {
 
 struct Table1Options {
-  std::string scene_file;
+  SceneChoice scene;
   double seconds = 5.0;
   std::string json;
   std::string plot = "table1";
@@ -81,7 +81,7 @@ std::filesystem::path plot_run(const std::string& file, const std::vector<ModelR
 }
 
 int bench_table1(const Table1Options& options) {
-  const Scene scene = scene_for_option(options.scene_file);
+  const Scene scene = scene_for_option(options.scene);
   GlSession session = open_gl(options.headless, options.width, options.height, "palpate bench table1");
   gl::Framebuffer framebuffer(
       {.width = options.width, .height = options.height, .color = gl::ColorFormat::rgba8, .samples = 0});
@@ -122,7 +122,7 @@ void add_bench_table1_command(CLI::App& app) {
   CLI::App* table1 = add_bench_command(app).add_subcommand(
       "table1",
       "The paper's Table I: graphics fps and haptic Hz together, in contact, with the CPU-naive baseline");
-  add_scene_option(table1, options->scene_file);
+  add_scene_options(table1, options->scene);
   table1->add_option("--seconds", options->seconds, "Seconds of contact for each row and renderer")
       ->capture_default_str()
       ->check(CLI::Range(0.5, 600.0));

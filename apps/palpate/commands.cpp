@@ -29,13 +29,20 @@ void on_selected(CLI::App* command, std::function<int()> action) {
   actions()[command] = std::move(action);
 }
 
-void add_scene_option(CLI::App* command, std::string& scene_file) {
-  command->add_option("--scene", scene_file,
+void add_scene_options(CLI::App* command, SceneChoice& choice) {
+  command->add_option("--scene", choice.file,
                       "Scene file (TOML), or 'phantom' for the generated brain and skin; default: Colin27's "
                       "real brain and skin (Debian package mricron-data), else the phantoms");
+  command
+      ->add_option("--falloff", choice.falloff,
+                   "How every object's dents spread: euclidean (straight line, the paper) or geodesic (along "
+                   "the surface); default: as the scene says")
+      ->check(CLI::IsMember({"euclidean", "geodesic"}));
 }
 
-Scene scene_for_option(const std::string& scene_file) {
+namespace {
+
+Scene scene_for_file(const std::string& scene_file) {
   if (scene_file == "phantom") return phantom_scene();
   if (!scene_file.empty()) return load_scene(scene_file);
   Progress progress;
@@ -45,6 +52,18 @@ Scene scene_for_option(const std::string& scene_file) {
     progress.update(std::string("building the Colin27 ") + std::string(object), stage, fraction);
   };
   return volume::default_scene(params);
+}
+
+}  // namespace
+
+Scene scene_for_option(const SceneChoice& choice) {
+  Scene scene = scene_for_file(choice.file);
+  if (!choice.falloff.empty()) {
+    for (SceneObject& object : scene.objects) {
+      object.material.falloff = choice.falloff == "geodesic" ? Falloff::geodesic : Falloff::euclidean;
+    }
+  }
+  return scene;
 }
 
 void add_size_options(CLI::App* command, int& width, int& height, const std::string& what) {

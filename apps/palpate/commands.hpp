@@ -13,11 +13,16 @@ void on_selected(CLI::App* command, std::function<int()> action);
 // Runs the action of the selected subcommand; returns its exit status.
 int run_selected(CLI::App& app);
 
-// --scene FILE|phantom (a scene file; "phantom": the generated phantoms; empty: the default scene).
-void add_scene_option(CLI::App* command, std::string& scene_file);
+// --scene FILE|phantom (a scene file; "phantom": the generated phantoms; empty: the default scene) and
+// --falloff euclidean|geodesic (every object's; empty: as the scene says).
+struct SceneChoice {
+  std::string file, falloff;
+};
+void add_scene_options(CLI::App* command, SceneChoice& choice);
 // The scene --scene names: a scene file, the phantoms, or (empty) the default scene: Colin27's brain
-// and skin, built on first use with progress on stderr and cached, or the phantoms with a note.
-Scene scene_for_option(const std::string& scene_file);
+// and skin, built on first use with progress on stderr and cached, or the phantoms with a note; with
+// --falloff's falloff on every object.
+Scene scene_for_option(const SceneChoice& choice);
 // --width and --height of a frame or window ("Frame", "Window"), 64 to 8192 pixels.
 void add_size_options(CLI::App* command, int& width, int& height, const std::string& what);
 
@@ -33,5 +38,6 @@ CLI::App& add_bench_command(CLI::App& app);
 void add_bench_haptics_command(CLI::App& app);
 void add_bench_render_command(CLI::App& app);
 void add_bench_table1_command(CLI::App& app);
+void add_bench_geodesic_command(CLI::App& app);
 
 }  // namespace palpate::cli

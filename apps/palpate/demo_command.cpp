@@ -22,7 +22,7 @@ namespace palpate::cli {
 namespace {
 
 struct DemoOptions {
-  std::string scene_file;
+  SceneChoice scene;
   std::string out_dir = "demo-out";
   int frames = -1;
   bool headless = false;
@@ -122,7 +122,7 @@ std::vector<KeySlot> plan_key_frames(const std::vector<Phase>& phases) {
 int run_demo(const DemoOptions& options) {
   const std::filesystem::path out = options.out_dir;
   std::filesystem::create_directories(out);
-  const Scene scene = scene_for_option(options.scene_file);
+  const Scene scene = scene_for_option(options.scene);
   GlSession gl_session = open_gl(options.headless, options.width, options.height, "palpate demo");
   const std::vector<Phase> phases = demo_phases(scene, glm::vec2(options.width, options.height));
   std::printf("palpate demo: %zu objects, %zu vertices; %s on %s; output in %s/\n", scene.objects.size(),
@@ -203,7 +203,7 @@ void add_demo_command(CLI::App& app) {
   auto options = std::make_shared<DemoOptions>();
   CLI::App* demo = app.add_subcommand(
       "demo", "The headless (or windowed) demo: a probe presses the skin, then slides on the brain");
-  add_scene_option(demo, options->scene_file);
+  add_scene_options(demo, options->scene);
   demo->add_option("--out", options->out_dir, "Output folder")->capture_default_str();
   demo->add_option("--frames", options->frames,
                    "Stop after this many captured frames (default: the whole script)")

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   palpate::cli::add_bench_haptics_command(app);
   palpate::cli::add_bench_render_command(app);
   palpate::cli::add_bench_table1_command(app);
+  palpate::cli::add_bench_geodesic_command(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {

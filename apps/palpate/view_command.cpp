@@ -31,7 +31,7 @@ namespace palpate::cli {
 namespace {
 
 struct ViewOptions {
-  std::string scene_file;
+  SceneChoice scene;
   int width = 1280, height = 1024;
   int frames = -1;              // quit after this many frames (for scripted runs)
   std::string screenshot;       // write the last frame here before quitting
@@ -39,7 +39,8 @@ struct ViewOptions {
 };
 
 // Hands the panel's edited materials to the haptic loop (stiffness, damping, touchability: from its next
-// tick) and the renderer (sigma, colour, visibility: from the next frame), for the objects that changed.
+// tick) and the renderer (sigma, colour, visibility, falloff: from the next frame), for the objects that
+// changed.
 void apply_materials(const std::vector<Material>& edited, std::vector<Material>& applied, HapticLoop& loop,
                      gl::Renderer& renderer) {
   for (std::size_t i = 0; i < edited.size(); ++i) {
@@ -49,7 +50,8 @@ void apply_materials(const std::vector<Material>& edited, std::vector<Material>&
         now.damping_ns_per_m != next.damping_ns_per_m) {
       loop.set_material(i, next);
     }
-    if (now.sigma_mm != next.sigma_mm || now.visible != next.visible || now.color != next.color) {
+    if (now.sigma_mm != next.sigma_mm || now.visible != next.visible || now.color != next.color ||
+        now.falloff != next.falloff) {
       renderer.set_material(i, next);
     }
     applied[i] = next;
@@ -166,6 +168,10 @@ void draw_panel(const Scene& scene, std::vector<Material>& materials, gl::DrawPa
       ImGui::SameLine();
       ImGui::Checkbox("touchable", &material.touchable);
       ImGui::SliderFloat("sigma mm", &material.sigma_mm, 0.5f, 40.0f);
+      int falloff = material.falloff == Falloff::geodesic ? 1 : 0;
+      if (ImGui::Combo("falloff", &falloff, "straight line (the paper)\0along the surface\0")) {
+        material.falloff = falloff == 1 ? Falloff::geodesic : Falloff::euclidean;
+      }
       ImGui::SliderFloat("k N/mm", &material.stiffness_n_per_mm, 0.02f, 2.0f);
       ImGui::SliderFloat("b N s/m", &material.damping_ns_per_m, 0.0f, 5.0f);
       ImGui::ColorEdit3("colour", &material.color.x);
@@ -189,7 +195,7 @@ void draw_panel(const Scene& scene, std::vector<Material>& materials, gl::DrawPa
 }
 
 int run_view(const ViewOptions& options) {
-  Scene scene = scene_for_option(options.scene_file);
+  Scene scene = scene_for_option(options.scene);
   GlSession session = open_gl(false, options.width, options.height, "palpate view");
   if (!session.window)
     throw Error("palpate view needs a display ($DISPLAY): run it under X or Xvfb, or use `palpate demo`");
@@ -343,7 +349,7 @@ int run_view(const ViewOptions& options) {
 void add_view_command(CLI::App& app) {
   auto options = std::make_shared<ViewOptions>();
   CLI::App* view = app.add_subcommand("view", "Interactive viewer: the mouse drives a virtual haptic device");
-  add_scene_option(view, options->scene_file);
+  add_scene_options(view, options->scene);
   add_size_options(view, options->width, options->height, "Window");
   view->add_option("--frames", options->frames, "Quit after this many frames")->check(CLI::PositiveNumber);
   view->add_option("--screenshot", options->screenshot, "With --frames: save the last frame to this PNG");

@@ -8,6 +8,7 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
+#include <optional>
 #include <glm/gtc/matrix_transform.hpp>
 #define GLM_ENABLE_EXPERIMENTAL
 #include <glm/gtx/euler_angles.hpp>
@@ -30,7 +31,7 @@ class ObjectReader {
   ObjectReader(const std::filesystem::path& file, const toml::table& table) : file_(file), table_(table) {
     static const std::set<std::string> known = {
         "name",  "mesh",      "translate", "rotate_deg", "sigma_mm", "stiffness_n_per_mm", "damping_ns_per_m",
-        "color", "touchable", "visible"};
+        "color", "touchable", "visible",   "falloff"};
     for (const auto& [key, value] : table_) {
       if (!known.contains(std::string(key.str()))) {
         throw Error(file_, line_of(value), "unknown key '" + std::string(key.str()) + "' in [[object]]");
@@ -92,6 +93,15 @@ class ObjectReader {
     return out;
   }
 
+  Falloff falloff(Falloff fallback) const {
+    const toml::node* node = table_.get("falloff");
+    if (!node) return fallback;
+    const std::optional<std::string> name = node->value<std::string>();
+    if (node->is_string() && name == "euclidean") return Falloff::euclidean;
+    if (node->is_string() && name == "geodesic") return Falloff::geodesic;
+    throw Error(file_, line_of(*node), "'falloff' must be \"euclidean\" or \"geodesic\"");
+  }
+
   int line() const { return line_of(table_); }
 
  private:
@@ -151,6 +161,7 @@ Scene load_scene(const std::filesystem::path& file) {
     m.color = read.vector("color", m.color, 0.0f, 1.0f);
     m.touchable = read.flag("touchable", m.touchable);
     m.visible = read.flag("visible", m.visible);
+    m.falloff = read.falloff(m.falloff);
     object.mesh = mesh_for(file, reference, read.line());
     if (!reference.starts_with("phantom:")) object.source = file.parent_path() / reference;
     scene.objects.push_back(std::move(object));
@@ -182,11 +193,13 @@ void save_scene(const Scene& scene, const std::filesystem::path& file) {
     std::snprintf(block, sizeof block,
                   "\n[[object]]\nname = \"%s\"\nmesh = \"%s\"\ntranslate = [%.6g, %.6g, %.6g]\n"
                   "rotate_deg = [%.6g, %.6g, %.6g]\nsigma_mm = %.6g\nstiffness_n_per_mm = %.6g\n"
-                  "damping_ns_per_m = %.6g\ncolor = [%.6g, %.6g, %.6g]\ntouchable = %s\nvisible = %s\n",
+                  "damping_ns_per_m = %.6g\ncolor = [%.6g, %.6g, %.6g]\ntouchable = %s\nvisible = %s\n"
+                  "falloff = \"%s\"\n",
                   object.name.c_str(), mesh_file.c_str(), translate.x, translate.y, translate.z,
                   glm::degrees(x) + 0.0f, glm::degrees(y) + 0.0f, glm::degrees(z) + 0.0f, m.sigma_mm,
                   m.stiffness_n_per_mm, m.damping_ns_per_m, m.color.r, m.color.g, m.color.b,
-                  m.touchable ? "true" : "false", m.visible ? "true" : "false");
+                  m.touchable ? "true" : "false", m.visible ? "true" : "false",
+                  m.falloff == Falloff::geodesic ? "geodesic" : "euclidean");
     text += block;
   }
   std::ofstream out(file, std::ios::binary);

@@ -46,6 +46,7 @@ stiffness_n_per_mm = 0.4
 damping_ns_per_m = 2
 color = [0.1, 0.2, 0.3]
 touchable = false
+falloff = "geodesic"
 
 [[object]]
 name = "brain"
@@ -65,6 +66,8 @@ visible = false
   EXPECT_EQ(ball.material.color, glm::vec3(0.1f, 0.2f, 0.3f));
   EXPECT_FALSE(ball.material.touchable);
   EXPECT_TRUE(ball.material.visible);
+  EXPECT_EQ(ball.material.falloff, Falloff::geodesic);
+  EXPECT_EQ(scene.objects[1].material.falloff, Falloff::euclidean);  // the paper's, by default
   // Rotation about z by 90 degrees, then the translation: (1,0,0) goes to (10,1,0).
   const glm::vec3 moved = glm::vec3(ball.transform * glm::vec4(1, 0, 0, 1));
   EXPECT_NEAR(moved.x, 10.0f, 1e-5f);
@@ -102,6 +105,10 @@ TEST(SceneFile, ErrorsNameTheFileAndLine) {
   EXPECT_NE(std::string(range.what()).find("out of range"), std::string::npos);
   EXPECT_EQ(load_error("color", "[[object]]\nname = \"a\"\nmesh = \"phantom:skin\"\ncolor = [1, 2]\n").line(),
             4);
+  const Error falloff =
+      load_error("falloff", "[[object]]\nname = \"a\"\nmesh = \"phantom:skin\"\nfalloff = \"air\"\n");
+  EXPECT_EQ(falloff.line(), 4);
+  EXPECT_NE(std::string(falloff.what()).find("\"euclidean\" or \"geodesic\""), std::string::npos);
   EXPECT_EQ(load_error("syntax", "[[object]]\nname = \"a\nmesh = 1\n").line(), 2);
   EXPECT_EQ(load_error("top_key", "title = \"x\"\n").line(), 1);
   const Error missing = load_error("missing_mesh", "[[object]]\nname = \"a\"\nmesh = \"nowhere.ply\"\n");
@@ -141,6 +148,7 @@ TEST(SceneFile, SavedScenesLoadBackTheSame) {
   ball.transform = glm::rotate(ball.transform, 0.4f, glm::normalize(glm::vec3(1, 2, -3)));
   ball.material = skin_material;
   ball.material.touchable = false;
+  ball.material.falloff = Falloff::geodesic;
   scene.objects.push_back(ball);
   SceneObject plain = ball;
   plain.name = "plain";
@@ -165,6 +173,7 @@ TEST(SceneFile, SavedScenesLoadBackTheSame) {
     EXPECT_EQ(a.material.color, b.material.color);
     EXPECT_EQ(a.material.touchable, b.material.touchable);
     EXPECT_EQ(a.material.visible, b.material.visible);
+    EXPECT_EQ(a.material.falloff, b.material.falloff);
   }
   scene.objects[0].transform[0][0] = 2.0f;  // scaled: not a rotation
   EXPECT_THROW(save_scene(scene, file), Error);

@@ -13,6 +13,7 @@
 //   color = [0.9, 0.7, 0.7]
 //   touchable = true
 //   visible = true
+//   falloff = "geodesic"             # how a dent spreads: "euclidean" (the paper), or along the surface
 //
 // Unknown keys, wrong types, and out-of-range values are palpate::Error naming the file and line.
 #include <filesystem>

@@ -1,0 +1,34 @@
+#pragma once
+// Checks of a dent's falloff and of the deformed surface, exact and slow (CGAL): for tests and
+// benchmarks, never per frame.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <glm/vec3.hpp>
+
+#include "palpate/core/mesh.hpp"
+
+namespace palpate::testing {
+
+// The dent's weight exp(-d^2 / 2 sigma^2) within its reach (4 sigma) with palpate's `distance` of each
+// vertex, against the weight with CGAL's exact shortest path from `point_mm` on `triangle`, as a
+// fraction of the penetration depth, over the vertices the exact path reaches within 4 sigma. The
+// exact paths run on the triangles within 4 sigma + 2 mm of the point (straight lines bound the
+// surface paths from below, so no shorter path leaves them). Seconds per contact at sigma 8 mm.
+struct WeightErrors {
+  double mean = 0.0, max = 0.0;
+  std::size_t vertices = 0;
+};
+WeightErrors weight_errors_against_exact(const Mesh& mesh, std::uint32_t triangle, glm::vec3 point_mm,
+                                         float sigma_mm, const std::function<float(std::uint32_t)>& distance);
+
+// The triangles near a dent that the deformation made pass through another or turn over: among the
+// triangles with a corner within `radius_mm` of `center_mm` (undeformed), those of `deformed` (the same
+// triangles, moved) that cross a triangle they did not cross undeformed and share no corner position
+// with (exact predicates), and those whose normal turned against the undeformed one.
+struct FoldCounts {
+  std::size_t self_intersecting = 0, inverted = 0;
+};
+FoldCounts count_folds(const Mesh& undeformed, const Mesh& deformed, glm::vec3 center_mm, float radius_mm);
+
+}  // namespace palpate::testing
