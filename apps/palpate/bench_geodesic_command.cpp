@@ -79,7 +79,8 @@ std::vector<Surface> surfaces(const GeodesicOptions& options) {
   std::vector<Surface> out;
   const Scene real = scene_for_option({});
   for (const SceneObject& object : real.objects) {
-    if (object.name.find("brain") != std::string::npos && object.mesh.vertex_count() != brain_phantom_vertices)
+    if (object.name.find("brain") != std::string::npos &&
+        object.mesh.vertex_count() != brain_phantom_vertices)
       out.push_back({"colin27 brain", object.mesh});
   }
   out.push_back({"phantom brain", make_brain_phantom()});
@@ -88,8 +89,9 @@ std::vector<Surface> surfaces(const GeodesicOptions& options) {
     const char* env = std::getenv("PALPATE_SHARED_DATA");
     data = env && *env ? env : "../shared/data";
   }
-  const std::pair<const char*, const char*> files[] = {{"fsaverage5 pial", "surfaces/fsaverage5_pial_left.gii.gz"},
-                                                       {"spm12 cortex", "surfaces/spm12_cortex_20484.surf.gii"}};
+  const std::pair<const char*, const char*> files[] = {
+      {"fsaverage5 pial", "surfaces/fsaverage5_pial_left.gii.gz"},
+      {"spm12 cortex", "surfaces/spm12_cortex_20484.surf.gii"}};
   for (const auto& [name, file] : files) {
     if (std::filesystem::exists(data / file)) {
       out.push_back({name, load_mesh(data / file)});
@@ -117,7 +119,8 @@ std::vector<ContactSite> contact_sites(const Mesh& mesh, std::size_t count) {
     const std::size_t t = pick(random);
     float u = unit(random), v = unit(random);
     if (u + v > 1.0f) u = 1.0f - u, v = 1.0f - v;
-    const glm::vec3 a = mesh.positions_mm[mesh.indices[3 * t]], b = mesh.positions_mm[mesh.indices[3 * t + 1]],
+    const glm::vec3 a = mesh.positions_mm[mesh.indices[3 * t]],
+                    b = mesh.positions_mm[mesh.indices[3 * t + 1]],
                     c = mesh.positions_mm[mesh.indices[3 * t + 2]];
     const glm::vec3 n = glm::cross(b - a, c - a);
     if (!(glm::length(n) > 0.0f)) continue;
@@ -155,8 +158,8 @@ struct FrameTimes {
 
 // Frames of the mesh pressed at each site in turn, the two falloffs interleaved frame by frame so that
 // the machine's load slows both alike; each frame ends with glFinish.
-FrameTimes time_frames(const Mesh& mesh, float sigma_mm, std::span<const ContactSite> sites, std::size_t frames,
-                       const gl::Framebuffer& target) {
+FrameTimes time_frames(const Mesh& mesh, float sigma_mm, std::span<const ContactSite> sites,
+                       std::size_t frames, const gl::Framebuffer& target) {
   Scene scene;
   scene.objects.push_back({"surface", mesh, glm::mat4(1.0f), Material{.sigma_mm = sigma_mm}, {}});
   gl::Renderer straight, along;
@@ -169,7 +172,8 @@ FrameTimes time_frames(const Mesh& mesh, float sigma_mm, std::span<const Contact
   target.bind();
   for (std::size_t frame = 0; frame < frames; ++frame) {
     const ContactSite& site = sites[frame % sites.size()];
-    const View view = view_of(site.point_mm, site.normal, 70.0f, float(target.width()) / float(target.height()));
+    const View view =
+        view_of(site.point_mm, site.normal, 70.0f, float(target.width()) / float(target.height()));
     const gl::ObjectDent dent{0, Dent{site.point_mm, sigma_mm, sigma_mm}, int(site.triangle)};
     for (gl::Renderer* renderer : {&straight, &along}) {
       glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
@@ -191,8 +195,8 @@ void save_pictures(const std::filesystem::path& folder, const Surface& surface, 
   Scene scene;
   scene.objects.push_back({"surface", surface.mesh, glm::mat4(1.0f), brain_material, {}});
   scene.objects[0].material.sigma_mm = sigma_mm;
-  const View view =
-      view_of(site.point_mm, site.normal, picture_distance_mm, float(target.width()) / float(target.height()));
+  const View view = view_of(site.point_mm, site.normal, picture_distance_mm,
+                            float(target.width()) / float(target.height()));
   const gl::ObjectDent dent{0, Dent{site.point_mm, 1.5f * sigma_mm, sigma_mm}, int(site.triangle)};
   gl::DrawParams draw;
   draw.draw_probe = false;
@@ -206,7 +210,8 @@ void save_pictures(const std::filesystem::path& folder, const Surface& surface, 
     target.bind();
     glClearColor(0.08f, 0.08f, 0.1f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    renderer.draw(view.view, view.projection, i > 0 ? std::span(&dent, 1) : std::span<const gl::ObjectDent>(), draw);
+    renderer.draw(view.view, view.projection, i > 0 ? std::span(&dent, 1) : std::span<const gl::ObjectDent>(),
+                  draw);
     images[i] = target.read_rgba8();
   }
   // Where the two falloffs differ visibly (by more than 16 levels in a channel), in red over the geodesic
@@ -214,7 +219,8 @@ void save_pictures(const std::filesystem::path& folder, const Surface& surface, 
   std::vector<std::uint8_t> difference = images[2];
   for (std::size_t i = 0; i < difference.size(); i += 4) {
     bool differs = false;
-    for (int c = 0; c < 3; ++c) differs = differs || std::abs(int(images[1][i + c]) - int(images[2][i + c])) > 16;
+    for (int c = 0; c < 3; ++c)
+      differs = differs || std::abs(int(images[1][i + c]) - int(images[2][i + c])) > 16;
     if (differs) difference[i] = 255, difference[i + 1] /= 3, difference[i + 2] /= 3;
   }
   const char* names[] = {"undeformed", "euclidean", "geodesic"};
@@ -236,13 +242,14 @@ int bench_geodesic(const GeodesicOptions& options) {
   GlSession session = open_gl(options.headless, options.width, options.height, "palpate bench geodesic");
   const gl::Framebuffer target({.width = options.width, .height = options.height});
 
-  nlohmann::json report = {{"device", session.renderer}, {"width", options.width}, {"height", options.height},
-                           {"quick", options.quick}, {"rows", nlohmann::json::array()},
-                           {"folds", nlohmann::json::array()}};
-  std::printf("\n| mesh | vertices | sigma mm | contacts | bleed straight | bleed geodesic | weight error mean / "
-              "max (exact, %zu contacts) | update ms p50 / p99 | upload ms p50 / p99 | patch vertices p50 | "
-              "frame overhead |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
-              exact_contacts);
+  nlohmann::json report = {{"device", session.renderer},      {"width", options.width},
+                           {"height", options.height},        {"quick", options.quick},
+                           {"rows", nlohmann::json::array()}, {"folds", nlohmann::json::array()}};
+  std::printf(
+      "\n| mesh | vertices | sigma mm | contacts | bleed straight | bleed geodesic | weight error mean / "
+      "max (exact, %zu contacts) | update ms p50 / p99 | upload ms p50 / p99 | patch vertices p50 | "
+      "frame overhead |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+      exact_contacts);
   std::vector<Surface> all = surfaces(options);
   for (const Surface& surface : all) {
     const Mesh& mesh = surface.mesh;
@@ -272,7 +279,8 @@ int bench_geodesic(const GeodesicOptions& options) {
         glFinish();
         start = Clock::now();
         glNamedBufferSubData(samples_buffer, GLintptr(changed.first * sizeof(glm::vec4)),
-                             GLsizeiptr(changed.count * sizeof(glm::vec4)), patch.samples().data() + changed.first);
+                             GLsizeiptr(changed.count * sizeof(glm::vec4)),
+                             patch.samples().data() + changed.first);
         glFinish();
         upload_ms.push_back(milliseconds_since(start));
 
@@ -287,13 +295,15 @@ int bench_geodesic(const GeodesicOptions& options) {
           bleed_along += dent_displacement(p, {&along, 1}, sample) > bleed_weight;
         }
         bleed_straight += bleed_here;
-        if (sigma == fold_sigma_mm && bleed_here > worst_bleed && seen_from_outside(tree, site, picture_distance_mm)) {
+        if (sigma == fold_sigma_mm && bleed_here > worst_bleed &&
+            seen_from_outside(tree, site, picture_distance_mm)) {
           worst_bleed = bleed_here, picture_site = &site;
         }
         if (i < exact_contacts) {
           const testing::WeightErrors errors = testing::weight_errors_against_exact(
-              mesh, site.triangle, site.point_mm, sigma,
-              [&](std::uint32_t v) { return dent_distance(along, mesh.positions_mm[v], patch.samples()[v]); });
+              mesh, site.triangle, site.point_mm, sigma, [&](std::uint32_t v) {
+                return dent_distance(along, mesh.positions_mm[v], patch.samples()[v]);
+              });
           error_sum += errors.mean;
           error_max = std::max(error_max, errors.max);
         }
@@ -302,25 +312,27 @@ int bench_geodesic(const GeodesicOptions& options) {
       const double overhead = (median(times.along) / median(times.straight) - 1.0) * 100.0;
       const double error_mean = error_sum / double(std::min(exact_contacts, sites.size()));
       const Percentiles update = percentiles(update_ms), upload = percentiles(upload_ms);
-      std::printf("| %s | %s | %.0f | %zu | %s | %s | %.4f / %.3f | %.3f / %.3f | %.3f / %.3f | %.0f | %+.1f%% |\n",
-                  surface.name.c_str(), with_thousands(mesh.vertex_count()).c_str(), sigma, sites.size(),
-                  with_thousands(bleed_straight).c_str(), with_thousands(bleed_along).c_str(), error_mean,
-                  error_max, update.p50, update.p99, upload.p50, upload.p99, median(patch_vertices), overhead);
+      std::printf(
+          "| %s | %s | %.0f | %zu | %s | %s | %.4f / %.3f | %.3f / %.3f | %.3f / %.3f | %.0f | %+.1f%% |\n",
+          surface.name.c_str(), with_thousands(mesh.vertex_count()).c_str(), sigma, sites.size(),
+          with_thousands(bleed_straight).c_str(), with_thousands(bleed_along).c_str(), error_mean, error_max,
+          update.p50, update.p99, upload.p50, upload.p99, median(patch_vertices), overhead);
       std::fflush(stdout);
-      report["rows"].push_back({{"mesh", surface.name},
-                                {"vertices", mesh.vertex_count()},
-                                {"sigma_mm", sigma},
-                                {"contacts", sites.size()},
-                                {"bleed_euclidean", bleed_straight},
-                                {"bleed_geodesic", bleed_along},
-                                {"weight_error_mean", error_mean},
-                                {"weight_error_max", error_max},
-                                {"exact_contacts", std::min(exact_contacts, sites.size())},
-                                {"update_ms", p50_p99(update_ms)},
-                                {"upload_ms", p50_p99(upload_ms)},
-                                {"patch_vertices_p50", median(patch_vertices)},
-                                {"frame_ms", {{"euclidean", median(times.straight)}, {"geodesic", median(times.along)}}},
-                                {"frame_overhead_pct", overhead}});
+      report["rows"].push_back(
+          {{"mesh", surface.name},
+           {"vertices", mesh.vertex_count()},
+           {"sigma_mm", sigma},
+           {"contacts", sites.size()},
+           {"bleed_euclidean", bleed_straight},
+           {"bleed_geodesic", bleed_along},
+           {"weight_error_mean", error_mean},
+           {"weight_error_max", error_max},
+           {"exact_contacts", std::min(exact_contacts, sites.size())},
+           {"update_ms", p50_p99(update_ms)},
+           {"upload_ms", p50_p99(upload_ms)},
+           {"patch_vertices_p50", median(patch_vertices)},
+           {"frame_ms", {{"euclidean", median(times.straight)}, {"geodesic", median(times.along)}}},
+           {"frame_overhead_pct", overhead}});
     }
     glDeleteBuffers(1, &samples_buffer);
     if (!options.pictures.empty() && &surface == &all.front()) {
@@ -333,39 +345,59 @@ int bench_geodesic(const GeodesicOptions& options) {
     }
   }
 
-  std::printf("\nFolds at sigma %.0f mm: triangles within 4 sigma of the press that pass through another or "
-              "turn over, summed over the presses\n\n| mesh | falloff | depth | presses | self-intersecting | "
-              "inverted |\n|---|---|---:|---:|---:|---:|\n",
-              fold_sigma_mm);
+  std::printf(
+      "\nFolds at sigma %.0f mm: triangles within 4 sigma of the press that pass through another or "
+      "turn over, summed over the presses\n\n| mesh | falloff | direction | depth | presses | "
+      "self-intersecting | inverted |\n|---|---|---|---:|---:|---:|---:|\n",
+      fold_sigma_mm);
   for (const Surface& surface : all) {
     const Mesh& mesh = surface.mesh;
     const std::vector<ContactSite> sites = contact_sites(mesh, fold_presses);
     SurfacePatch patch(mesh);
     Mesh deformed;
-    for (const Falloff falloff : {Falloff::euclidean, Falloff::geodesic}) {
+    // The paper (straight line, each vertex along its own normal), the surface distance with each vertex
+    // along its own normal, with every vertex pushed against the contact's normal, and that with the
+    // dent's slope limited (the renderer's choice for the geodesic falloff: surface_dent_max_slope).
+    struct Variant {
+      Falloff falloff;
+      bool pushed;
+      float max_slope;  // 0: none
+      const char* falloff_name;
+      const char* direction;
+    };
+    for (const Variant variant :
+         {Variant{Falloff::euclidean, false, 0.0f, "euclidean", "own normal"},
+          Variant{Falloff::geodesic, false, 0.0f, "geodesic", "own normal"},
+          Variant{Falloff::geodesic, true, 0.0f, "geodesic", "contact normal"},
+          Variant{Falloff::geodesic, true, 1.0f, "geodesic", "contact normal, slope <= 1"},
+          Variant{Falloff::geodesic, true, surface_dent_max_slope, "geodesic",
+                  "contact normal, slope <= 0.75"}}) {
       for (const float depth_over_sigma : {1.0f, 2.0f, 3.0f}) {
-        std::fprintf(stderr, "bench geodesic: folds, %s, %s, %.0f sigma\n", surface.name.c_str(),
-                     falloff == Falloff::geodesic ? "geodesic" : "euclidean", depth_over_sigma);
+        std::fprintf(stderr, "bench geodesic: folds, %s, %s, %s, %.0f sigma\n", surface.name.c_str(),
+                     variant.falloff_name, variant.direction, depth_over_sigma);
         testing::FoldCounts total;
         for (const ContactSite& site : sites) {
           Dent dent{site.point_mm, depth_over_sigma * fold_sigma_mm, fold_sigma_mm};
-          if (falloff == Falloff::geodesic) {
-            patch.compute(site.triangle, site.point_mm, dent_cutoff_sigmas * fold_sigma_mm);
+          if (variant.max_slope > 0.0f) dent = dent_with_slope_limit(dent, variant.max_slope);
+          if (variant.falloff == Falloff::geodesic) {
+            patch.compute(site.triangle, site.point_mm, dent_cutoff_sigmas * dent.sigma_mm);
             dent = along_surface(dent, patch);
+            if (variant.pushed) dent.normal = patch.contact_normal();
           }
           deform_mesh(mesh, glm::mat4(1.0f), {&dent, 1}, deformed,
-                      falloff == Falloff::geodesic ? patch.samples() : std::span<const glm::vec4>());
+                      variant.falloff == Falloff::geodesic ? patch.samples() : std::span<const glm::vec4>());
           const testing::FoldCounts counts =
               testing::count_folds(mesh, deformed, site.point_mm, dent_cutoff_sigmas * fold_sigma_mm);
           total.self_intersecting += counts.self_intersecting;
           total.inverted += counts.inverted;
         }
-        const char* name = falloff == Falloff::geodesic ? "geodesic" : "euclidean";
-        std::printf("| %s | %s | %.0f sigma | %zu | %zu | %zu |\n", surface.name.c_str(), name, depth_over_sigma,
-                    sites.size(), total.self_intersecting, total.inverted);
+        std::printf("| %s | %s | %s | %.0f sigma | %zu | %zu | %zu |\n", surface.name.c_str(),
+                    variant.falloff_name, variant.direction, depth_over_sigma, sites.size(),
+                    total.self_intersecting, total.inverted);
         std::fflush(stdout);
         report["folds"].push_back({{"mesh", surface.name},
-                                   {"falloff", name},
+                                   {"falloff", variant.falloff_name},
+                                   {"direction", variant.direction},
                                    {"depth_over_sigma", depth_over_sigma},
                                    {"sigma_mm", fold_sigma_mm},
                                    {"presses", sites.size()},
@@ -384,7 +416,8 @@ void add_bench_geodesic_command(CLI::App& app) {
   auto options = std::make_shared<GeodesicOptions>();
   CLI::App* geodesic = add_bench_command(app).add_subcommand(
       "geodesic", "The geodesic falloff against the straight line: bleed, error, cost, folds");
-  geodesic->add_flag("--quick", options->quick, "20 contacts a surface instead of 200, fewer frames and presses");
+  geodesic->add_flag("--quick", options->quick,
+                     "20 contacts a surface instead of 200, fewer frames and presses");
   geodesic->add_option("--json", options->json, "Also write the results to this JSON file");
   geodesic->add_option("--pictures", options->pictures,
                        "Folder for pictures of one press on the first surface with both falloffs");

@@ -58,9 +58,26 @@ float dent_displacement(glm::vec3 v, std::span<const Dent> dents, glm::vec4 surf
   return sum;
 }
 
+namespace {
+
+// Whether the dent pushes every vertex along -its normal (deform.hpp).
+bool pushes_along_its_normal(const Dent& dent, bool first) noexcept {
+  return first && dent.along_surface && glm::dot(dent.normal, dent.normal) > 0.0f;
+}
+
+}  // namespace
+
 glm::vec3 displaced_position(glm::vec3 v, glm::vec3 n, std::span<const Dent> dents,
                              glm::vec4 surface_sample) noexcept {
-  return v - n * dent_displacement(v, dents, surface_sample);
+  glm::vec3 moved = v;
+  for (std::size_t i = 0; i < dents.size(); ++i) {
+    const Dent& dent = dents[i];
+    const float d = dent_reach(dent, i == 0, v, surface_sample).distance;
+    if (d >= dent_cutoff_sigmas * dent.sigma_mm) continue;
+    moved -= (pushes_along_its_normal(dent, i == 0) ? dent.normal : n) *
+             dent_gaussian(d, dent.depth_mm, dent.sigma_mm);
+  }
+  return moved;
 }
 
 glm::vec3 perturbed_normal(glm::vec3 n0, glm::vec3 v, std::span<const Dent> dents,
@@ -77,15 +94,29 @@ glm::vec3 perturbed_normal(glm::vec3 n0, glm::vec3 v, std::span<const Dent> dent
     const float cos_theta = 1.0f / std::sqrt(1.0f + tan_theta * tan_theta);
     const float sin_theta = tan_theta * cos_theta;
     const glm::vec3 axis = w / std::sqrt(w_length2);
+    if (pushes_along_its_normal(dent, i == 0)) {  // N + (N x grad G) x n, with N x T = axis
+      n = glm::normalize(n + glm::cross(axis, dent.normal) * tan_theta);
+      continue;
+    }
     n = n * cos_theta + glm::cross(axis, n) * sin_theta;
   }
   return n;
 }
 
+Dent dent_with_slope_limit(const Dent& dent, float max_slope) noexcept {
+  Dent widened = dent;
+  widened.sigma_mm = std::max(dent.sigma_mm, std::abs(dent.depth_mm) * 0.60653066f / max_slope);  // e^(-1/2)
+  return widened;
+}
+
 Dent dent_in_space(const Dent& dent, const glm::mat4& to_space) noexcept {
   const float scale = std::cbrt(std::abs(glm::determinant(glm::mat3(to_space))));
-  return Dent{glm::vec3(to_space * glm::vec4(dent.center_mm, 1.0f)), dent.depth_mm * scale,
-              dent.sigma_mm * scale, dent.along_surface, dent.seed_radius_mm * scale};
+  return Dent{glm::vec3(to_space * glm::vec4(dent.center_mm, 1.0f)),
+              dent.depth_mm * scale,
+              dent.sigma_mm * scale,
+              dent.along_surface,
+              dent.seed_radius_mm * scale,
+              glm::mat3(to_space) * dent.normal / scale};
 }
 
 glm::vec4 surface_sample_in_space(glm::vec4 sample, const glm::mat4& to_space) noexcept {

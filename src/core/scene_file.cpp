@@ -8,8 +8,8 @@
 #include <array>
 #include <cstdio>
 #include <fstream>
-#include <optional>
 #include <glm/gtc/matrix_transform.hpp>
+#include <optional>
 #define GLM_ENABLE_EXPERIMENTAL
 #include <glm/gtx/euler_angles.hpp>
 #include <set>

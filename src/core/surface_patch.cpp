@@ -62,6 +62,10 @@ void SurfacePatch::compute(std::int64_t triangle, glm::vec3 point_mm, float radi
                                     ? std::uint32_t(triangle)
                                     : closest_triangle(point_mm);
   field_.compute(contact, point_mm, radius_mm);  // the triangle is in range: does not throw
+  const std::uint32_t* corners = &welded_.indices[3 * std::size_t(contact)];
+  const glm::vec3 face = glm::cross(welded_.positions_mm[corners[1]] - welded_.positions_mm[corners[0]],
+                                    welded_.positions_mm[corners[2]] - welded_.positions_mm[corners[0]]);
+  contact_normal_ = glm::length(face) > 0.0f ? glm::normalize(face) : glm::vec3(0.0f);
   seed_radius_mm_ = 0.0f;
   for (int k = 0; k < 3; ++k) {
     const glm::vec3 corner = welded_.positions_mm[welded_.indices[3 * std::size_t(contact) + k]];

@@ -17,6 +17,7 @@ constexpr std::string_view uniform_block = R"glsl(layout(std140) uniform Palpate
   int palpate_dent_count;
   int palpate_surface_dent;     // 1: the first dent falls off along the surface (the vertex's surface sample)
   float palpate_surface_seed;   // the radius within which it blends into the straight line
+  vec4 palpate_surface_normal;  // xyz: the direction it pushes every vertex against (zero: their own)
 };
 )glsl";
 constexpr std::string_view uniform_arrays =
@@ -25,6 +26,7 @@ uniform vec4 palpate_dent_shape[PALPATE_MAX_DENTS];  // x (4 sigma)^2, y 1/(2 si
 uniform int palpate_dent_count;
 uniform int palpate_surface_dent;    // 1: the first dent falls off along the surface (the surface sample)
 uniform float palpate_surface_seed;  // the radius within which it blends into the straight line
+uniform vec4 palpate_surface_normal;  // xyz: the direction it pushes every vertex against (zero: their own)
 )glsl";
 
 // The functions, in the GLSL common to 1.10 and later (and ES 3.00). Their loops run over
@@ -45,20 +47,23 @@ float palpate_surface_distance(float e, vec4 surface, inout vec3 toward) {
 // V' = V - D * sum G(d), G(d) = p exp(-d^2 / 2 sigma^2), d = |V - c| (or along the surface for the first
 // dent, with `use_surface`); a dent is skipped beyond 4 sigma. direction must be of unit length: at
 // d = 0 the surface moves by exactly p, to the tool tip.
+// The first dent along the surface pushes every vertex against palpate_surface_normal when it is set.
 vec3 palpate_displace_any(vec3 position, vec3 direction, vec4 surface, bool use_surface) {
-  float g = 0.0;
+  vec3 moved = position;
   for (int i = 0; i < PALPATE_DENT_SLOTS; ++i) {
     if (i >= palpate_dent_count) break;
     vec4 center_depth = palpate_dent_center_depth[i];
     vec3 offset = center_depth.xyz - position;
     float d2 = dot(offset, offset);
+    vec3 push = direction;
     if (use_surface && i == 0 && palpate_surface_dent != 0) {
       float d = palpate_surface_distance(sqrt(d2), surface, offset);
       d2 = d * d;
+      push = dot(palpate_surface_normal.xyz, palpate_surface_normal.xyz) > 0.0 ? palpate_surface_normal.xyz : direction;
     }
-    g += d2 < palpate_dent_shape[i].x ? center_depth.w * exp(-d2 * palpate_dent_shape[i].y) : 0.0;
+    moved -= push * (d2 < palpate_dent_shape[i].x ? center_depth.w * exp(-d2 * palpate_dent_shape[i].y) : 0.0);
   }
-  return position - direction * g;
+  return moved;
 }
 vec3 palpate_displace(vec3 position, vec3 direction) {
   return palpate_displace_any(position, direction, vec4(0.0), false);
@@ -80,18 +85,23 @@ vec3 palpate_displace(vec3 position, vec3 direction, vec4 surface) {
 // d is measured from the undeformed position, as in palpate_displace. No tilt beyond 4 sigma, nor where
 // d = 0 or N is parallel to K (|N x K|^2 <= 1e-12 |K|^2 |N|^2, as the CPU twin). The normal comes out
 // of unit length.
+// Where the first dent along the surface pushes every vertex against one normal n (palpate_surface_normal),
+// the tilt is that of the surface V - n G: N + (N x grad G) x n, the step along T above turned into
+// ((N x T) x n) / |N|.
 void palpate_deform_fragment_any(inout vec3 position, inout vec3 normal, vec4 surface, bool use_surface) {
   vec3 n = normal;
-  float g = 0.0;
+  vec3 moved = position;
   for (int i = 0; i < PALPATE_DENT_SLOTS; ++i) {
     if (i >= palpate_dent_count) break;
     vec4 center_depth = palpate_dent_center_depth[i];
     vec4 shape = palpate_dent_shape[i];
     vec3 toward = center_depth.xyz - position;
     float d2 = dot(toward, toward);
+    bool pushed = false;
     if (use_surface && i == 0 && palpate_surface_dent != 0) {
       float d = palpate_surface_distance(sqrt(d2), surface, toward);
       d2 = d * d;
+      pushed = dot(palpate_surface_normal.xyz, palpate_surface_normal.xyz) > 0.0;
     }
     float kk = dot(toward, toward);
     float nn = dot(n, n);
@@ -100,10 +110,12 @@ void palpate_deform_fragment_any(inout vec3 position, inout vec3 normal, vec4 su
     float falloff = exp(-d2 * shape.y);  // G(d) / p
     float step = shape.z * falloff * sqrt(d2 / cross2);
     bool reaches = d2 < shape.x;
-    g += reaches ? center_depth.w * falloff : 0.0;
-    n += (toward * nn - n * n_k) * (reaches && cross2 > 1e-12 * kk * nn ? step : 0.0);  // a select: step
-  }                                                                                     // is not finite there
-  position -= normal * g;
+    vec3 tilt = toward * nn - n * n_k;
+    if (pushed) tilt = cross(cross(n, tilt), palpate_surface_normal.xyz) * inversesqrt(nn);
+    moved -= (pushed ? palpate_surface_normal.xyz : normal) * (reaches ? center_depth.w * falloff : 0.0);
+    n += tilt * (reaches && cross2 > 1e-12 * kk * nn ? step : 0.0);  // a select: step is not finite there
+  }
+  position = moved;
   normal = normalize(n);
 }
 void palpate_deform_fragment(inout vec3 position, inout vec3 normal) {
@@ -215,6 +227,7 @@ DeformBlockData make_deform_block_data(std::span<const Dent> dents) noexcept {
   if (count > 0 && dents[0].along_surface) {
     data.surface_dent = 1;
     data.surface_seed = std::max(dents[0].seed_radius_mm, 1e-4f * dents[0].sigma_mm);  // as the CPU twin
+    data.surface_normal = glm::vec4(dents[0].normal, 0.0f);
   }
   return data;
 }

@@ -60,6 +60,7 @@ DeformUniforms::DeformUniforms(std::uint32_t program, std::uint32_t block_bindin
   count_location_ = glGetUniformLocation(program, "palpate_dent_count");
   surface_dent_location_ = glGetUniformLocation(program, "palpate_surface_dent");
   surface_seed_location_ = glGetUniformLocation(program, "palpate_surface_seed");
+  surface_normal_location_ = glGetUniformLocation(program, "palpate_surface_normal");
   if (center_depth_location_ < 0 && shape_location_ < 0) {
     throw Error("DeformUniforms: program " + std::to_string(program) + " has neither the uniform block " +
                 deform_block_name +
@@ -82,6 +83,7 @@ DeformUniforms::DeformUniforms(DeformUniforms&& other) noexcept
       count_location_(other.count_location_),
       surface_dent_location_(other.surface_dent_location_),
       surface_seed_location_(other.surface_seed_location_),
+      surface_normal_location_(other.surface_normal_location_),
       data_(other.data_) {}
 
 DeformUniforms& DeformUniforms::operator=(DeformUniforms&& other) noexcept {
@@ -96,6 +98,7 @@ DeformUniforms& DeformUniforms::operator=(DeformUniforms&& other) noexcept {
     count_location_ = other.count_location_;
     surface_dent_location_ = other.surface_dent_location_;
     surface_seed_location_ = other.surface_seed_location_;
+    surface_normal_location_ = other.surface_normal_location_;
     data_ = other.data_;
   }
   return *this;
@@ -126,6 +129,7 @@ void DeformUniforms::apply() const noexcept {
   if (count_location_ >= 0) glUniform1i(count_location_, data_.count);
   if (surface_dent_location_ >= 0) glUniform1i(surface_dent_location_, data_.surface_dent);
   if (surface_seed_location_ >= 0) glUniform1f(surface_seed_location_, data_.surface_seed);
+  if (surface_normal_location_ >= 0) glUniform4fv(surface_normal_location_, 1, &data_.surface_normal.x);
 }
 
 }  // namespace palpate::gl

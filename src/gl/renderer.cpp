@@ -252,8 +252,10 @@ struct SurfaceFalloff {
   SurfaceFalloff& operator=(const SurfaceFalloff&) = delete;
 
   // Marches from `dent` (world) on `triangle` (the object's, in the renderer's order; -1: unknown) and
-  // uploads what changed; the dent then falls off along the surface.
+  // uploads what changed; the dent then falls off along the surface, pushing every vertex against the
+  // contact triangle's normal, widened where its slope would pass surface_dent_max_slope.
   void update(Dent& dent, const glm::mat4& transform, std::int64_t triangle) {
+    dent = dent_with_slope_limit(dent, surface_dent_max_slope);
     const glm::vec3 point = glm::vec3(glm::inverse(transform) * glm::vec4(dent.center_mm, 1.0f));
     patch.compute(triangle, point, dent_cutoff_sigmas * dent.sigma_mm);
     const SurfacePatch::Range changed = patch.changed();
@@ -264,6 +266,7 @@ struct SurfaceFalloff {
     }
     dent.along_surface = true;
     dent.seed_radius_mm = patch.seed_radius_mm();
+    dent.normal = glm::mat3(transform) * patch.contact_normal();
   }
 };
 
@@ -588,7 +591,7 @@ int Renderer::State::add_dent(int object_index, const Dent& dent, int triangle) 
   }
   Dent& added = object->dents[static_cast<std::size_t>(object->dent_count++)];
   added = dent;
-  added.along_surface = false;  // the geodesic falloff is the object's material's to choose
+  added.along_surface = false;  // the geodesic falloff is the object's material's to choose (and its normal)
   return 0;
 }
 

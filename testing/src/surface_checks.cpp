@@ -26,14 +26,16 @@ Kernel::Point_3 point_of(glm::vec3 p) {
 }
 
 Kernel::Triangle_3 triangle_of(const Mesh& mesh, std::size_t t) {
-  return {point_of(mesh.positions_mm[mesh.indices[3 * t]]), point_of(mesh.positions_mm[mesh.indices[3 * t + 1]]),
+  return {point_of(mesh.positions_mm[mesh.indices[3 * t]]),
+          point_of(mesh.positions_mm[mesh.indices[3 * t + 1]]),
           point_of(mesh.positions_mm[mesh.indices[3 * t + 2]])};
 }
 
 }  // namespace
 
 WeightErrors weight_errors_against_exact(const Mesh& mesh, std::uint32_t triangle, glm::vec3 point_mm,
-                                         float sigma_mm, const std::function<float(std::uint32_t)>& distance) {
+                                         float sigma_mm,
+                                         const std::function<float(std::uint32_t)>& distance) {
   const float reach = 4.0f * sigma_mm, patch = reach + 2.0f;
   SurfaceMesh exact_mesh;
   std::unordered_map<std::uint32_t, SurfaceMesh::Vertex_index> to_exact;
@@ -45,7 +47,8 @@ WeightErrors weight_errors_against_exact(const Mesh& mesh, std::uint32_t triangl
   };
   for (std::uint32_t t = 0; t < mesh.triangle_count(); ++t) {
     const std::uint32_t* c = &mesh.indices[3 * std::size_t(t)];
-    if (std::max({glm::distance(mesh.positions_mm[c[0]], point_mm), glm::distance(mesh.positions_mm[c[1]], point_mm),
+    if (std::max({glm::distance(mesh.positions_mm[c[0]], point_mm),
+                  glm::distance(mesh.positions_mm[c[1]], point_mm),
                   glm::distance(mesh.positions_mm[c[2]], point_mm)}) > patch)
       continue;
     const auto face = exact_mesh.add_face(vertex(c[0]), vertex(c[1]), vertex(c[2]));
@@ -64,14 +67,17 @@ WeightErrors weight_errors_against_exact(const Mesh& mesh, std::uint32_t triangl
   const double by_corner[3] = {double(u), double(v), double(1.0f - u - v)};
   ShortestPaths::Barycentric_coordinates coordinates{0.0, 0.0, 0.0};
   int k = 0;
-  for (const SurfaceMesh::Vertex_index corner : CGAL::vertices_around_face(exact_mesh.halfedge(source_face), exact_mesh)) {
+  for (const SurfaceMesh::Vertex_index corner :
+       CGAL::vertices_around_face(exact_mesh.halfedge(source_face), exact_mesh)) {
     for (int j = 0; j < 3; ++j)
       if (to_exact.at(c[j]) == corner) coordinates[k] = by_corner[j];
     ++k;
   }
   ShortestPaths exact(exact_mesh);
   exact.add_source_point(source_face, coordinates);
-  const auto weight = [&](double d) { return d < reach ? std::exp(-d * d / (2.0 * sigma_mm * sigma_mm)) : 0.0; };
+  const auto weight = [&](double d) {
+    return d < reach ? std::exp(-d * d / (2.0 * sigma_mm * sigma_mm)) : 0.0;
+  };
   for (const auto& [vertex_index, exact_vertex] : to_exact) {
     const double exact_distance = exact.shortest_distance_to_source_points(exact_vertex).first;
     if (exact_distance < 0.0 || exact_distance > reach) continue;  // -1: not connected within the patch
@@ -99,7 +105,8 @@ FoldCounts count_folds(const Mesh& undeformed, const Mesh& deformed, glm::vec3 c
   for (std::size_t t = 0; t < triangles; ++t) {
     bool inside = false;
     for (int k = 0; k < 3; ++k)
-      inside = inside || glm::distance(undeformed.positions_mm[undeformed.indices[3 * t + k]], center_mm) < radius_mm;
+      inside = inside ||
+               glm::distance(undeformed.positions_mm[undeformed.indices[3 * t + k]], center_mm) < radius_mm;
     if (!inside) continue;
     near.push_back(std::uint32_t(t));
     glm::vec3 lo, hi;
@@ -158,7 +165,8 @@ FoldCounts count_folds(const Mesh& undeformed, const Mesh& deformed, glm::vec3 c
     counts.self_intersecting += crossing[t];
     const auto normal = [&](const Mesh& mesh) {
       const glm::vec3 a = mesh.positions_mm[mesh.indices[3 * t]];
-      return glm::cross(mesh.positions_mm[mesh.indices[3 * t + 1]] - a, mesh.positions_mm[mesh.indices[3 * t + 2]] - a);
+      return glm::cross(mesh.positions_mm[mesh.indices[3 * t + 1]] - a,
+                        mesh.positions_mm[mesh.indices[3 * t + 2]] - a);
     };
     counts.inverted += glm::dot(normal(undeformed), normal(deformed)) < 0.0f;
   }

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -119,6 +120,26 @@ TEST(DeformMesh, MatchesTheAnalyticSurfaceOfAFinePlane) {
     EXPECT_NEAR(glm::dot(perturbed_normal({0, 0, 1}, p, {&dent, 1}), analytic), 1.0f, 1e-5f);
   }
   EXPECT_LT(glm::degrees(worst), 1.5f);
+}
+
+}  // namespace
+}  // namespace palpate
+
+namespace palpate {
+namespace {
+
+// The widened dent's steepest slope, found by sampling G', is the limit; a shallow dent keeps its sigma;
+// the contact point still reaches the tip (G(0) = p).
+TEST(DentSlopeLimit, WidensOnlyWhatIsTooSteep) {
+  const Dent shallow{{0, 0, 0}, 2.0f, 4.0f}, deep{{0, 0, 0}, 8.0f, 4.0f};
+  EXPECT_EQ(dent_with_slope_limit(shallow, 0.75f).sigma_mm, 4.0f);  // slope 0.30
+  const Dent widened = dent_with_slope_limit(deep, 0.75f);
+  EXPECT_GT(widened.sigma_mm, 4.0f);
+  float steepest = 0.0f;
+  for (float d = 0.0f; d < 4.0f * widened.sigma_mm; d += 0.001f)
+    steepest = std::max(steepest, -dent_slope(d, widened.depth_mm, widened.sigma_mm));
+  EXPECT_NEAR(steepest, 0.75f, 1e-4f);
+  EXPECT_EQ(dent_gaussian(0.0f, widened.depth_mm, widened.sigma_mm), 8.0f);
 }
 
 }  // namespace

@@ -213,6 +213,7 @@ TEST_F(DentedSphere, AlongTheSurfaceTheGpuEqualsTheCpuReference) {
   std::vector<Dent> along = dents;
   along[0].along_surface = true;
   along[0].seed_radius_mm = patch.seed_radius_mm();
+  along[0].normal = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));  // pushed one way, not along each normal
   const Captured gpu = capture(mesh, along, max_dents, "450 core", patch.samples());
   float worst_displacement = 0.0f, worst_angle = 0.0f, largest_change = 0.0f;
   for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
@@ -279,6 +280,7 @@ void expect_dialect_matches_the_cpu(const std::string& version, GlslDialect dial
   Dent along[] = {dents[0], dents[1]};
   along[0].along_surface = true;
   along[0].seed_radius_mm = patch.seed_radius_mm();
+  along[0].normal = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
   const Captured surface = capture(mesh, along, 2, version, patch.samples());
   worst_position = worst_angle = 0.0f;
   for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
@@ -326,6 +328,12 @@ TEST(DeformBlockLayout, MatchesTheDriversStd140Offsets) {
   EXPECT_EQ(offsets[2], static_cast<GLint>(offsetof(DeformBlockData, count)));
   EXPECT_EQ(offsets[3], static_cast<GLint>(offsetof(DeformBlockData, surface_dent)));
   EXPECT_EQ(offsets[4], static_cast<GLint>(offsetof(DeformBlockData, surface_seed)));
+  GLuint normal_index = 0;
+  const char* normal_name = "palpate_surface_normal";
+  glGetUniformIndices(program.id(), 1, &normal_name, &normal_index);
+  GLint normal_offset = 0;
+  glGetActiveUniformsiv(program.id(), 1, &normal_index, GL_UNIFORM_OFFSET, &normal_offset);
+  EXPECT_EQ(normal_offset, static_cast<GLint>(offsetof(DeformBlockData, surface_normal)));
 }
 
 TEST(DeformBlockData, HoldsTheDerivedTermsOfEachDent) {

@@ -115,6 +115,7 @@ void expect_true_normals(const Mesh& mesh, const Dent& dent, const Camera& camer
     Dent along = dent;
     along.along_surface = true;
     along.seed_radius_mm = patch.seed_radius_mm();
+    along.normal = glm::mat3(transform) * patch.contact_normal();  // as the renderer pushes it
     deform_mesh(mesh, transform, {&along, 1}, deformed, patch.samples());
   } else {
     deform_mesh(mesh, transform, {&dent, 1}, deformed);
@@ -186,8 +187,19 @@ TEST(RendererNormals, AlongTheSurfaceTheRotatedPlaneMatchesTheTrueNormals) {
                                           glm::radians(35.0f), glm::normalize(glm::vec3(1.0f, 2.0f, 0.5f)));
   const glm::vec3 contact = glm::vec3(transform * glm::vec4(3.0f, 2.0f, 0.0f, 1.0f));
   expect_true_normals(plane, Dent{contact, 3.0f, 5.0f},
-                      looking_at({0.0f, -60.0f, 60.0f}, {4.0f, -3.0f, 2.0f}), {0.025f, 0.27f},
-                      {0.065f, 0.25f}, transform, Falloff::geodesic);
+                      looking_at({0.0f, -60.0f, 60.0f}, {4.0f, -3.0f, 2.0f}), {0.025f, 0.27f}, {0.065f, 0.3f},
+                      transform, Falloff::geodesic);  // measured p99 0.102, 0.107
+}
+
+// Along the surface on the sphere every vertex is pushed against the contact triangle's normal, not its
+// own: the shading normals must follow that surface (N + (N x grad G) x n), not the paper's.
+TEST(RendererNormals, AlongTheSurfaceTheFineSphereMatchesTheTrueNormals) {
+  test::gl_context();
+  const Mesh sphere = make_sphere(40.0f, 80000);
+  const glm::vec3 contact = glm::normalize(glm::vec3(0.3f, -1.0f, 0.4f)) * 40.0f;
+  // Measured: mean 0.018, p99 0.158 degrees; in the dent 0.047, 0.218.
+  expect_true_normals(sphere, Dent{contact, 4.0f, 6.0f}, looking_at({20.0f, -130.0f, 60.0f}, {0, 0, 0}),
+                      {0.06f, 0.5f}, {0.15f, 0.65f}, glm::mat4(1.0f), Falloff::geodesic);
 }
 
 TEST(RendererNormals, FineSphereMatchesTheTrueNormals) {

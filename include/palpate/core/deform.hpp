@@ -18,6 +18,13 @@
 // and the tilt of the normal follows the blend of VC and the sample's direction (w'(d) times the
 // distance's gradient). Only the first dent of an object can fall off along the surface (one patch per
 // object); later dents use the straight line.
+// Such a dent also pushes every vertex one way, along -`normal` (the contact's outward normal), as
+// H3DAPI's deformer does, instead of each vertex along its own direction: moved along their own
+// normals, the vertices of a convex crown cross once the depth passes its radius of curvature (on the
+// Colin27 brain at sigma 4 mm and 2 sigma deep, ten times the self-intersecting triangles:
+// docs/design.md). The shading normal is then that of the surface V - n G(V):
+//     N' = N + (N x grad G) x n,   grad G = G'(d) grad d   (N + grad G when n = N).
+// A zero `normal` keeps each vertex's own direction.
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -36,6 +43,7 @@ struct Dent {
   // The geodesic falloff: d from the per-vertex surface sample (first dent only; see above).
   bool along_surface = false;
   float seed_radius_mm = 0.0f;  // the contact triangle's farthest corner from c
+  glm::vec3 normal{0.0f};       // the contact's outward unit normal: the push's direction when along_surface
 };
 
 // A vertex's surface sample where no patch reaches: any dent along the surface has zero weight there.
@@ -86,6 +94,14 @@ Dent dent_in_space(const Dent& dent, const glm::mat4& to_space) noexcept;
 // A surface sample of the object frame in that space: its direction rotated by `to_space`'s rotation,
 // its distance scaled by its scale (`to_space` from the object frame, as for the positions).
 glm::vec4 surface_sample_in_space(glm::vec4 sample, const glm::mat4& to_space) noexcept;
+
+// The dent widened where it is deeper than its spread allows: sigma grown to p e^(-1/2) / max_slope
+// where needed, so that its steepest slope |G'| = p e^(-1/2) / sigma stays at most `max_slope`. A
+// surface pushed one way (Dent::normal) turns over where the slope along it passes 1.
+Dent dent_with_slope_limit(const Dent& dent, float max_slope) noexcept;
+// The slope limit of a dent that falls off along the surface and pushes one way: below it, presses up
+// to 3 sigma on the real brain leave no triangle turned over (docs/design.md).
+inline constexpr float surface_dent_max_slope = 0.75f;
 
 // The dent a contact makes on an object of spread `sigma_mm`.
 inline Dent dent_from_contact(const Contact& contact, float sigma_mm) noexcept {

@@ -11,9 +11,11 @@
 //
 //     palpate::SurfacePatch patch(mesh);                  // once: adjacency and workspace
 //     ...each frame, for the object's first dent (object frame):
-//     patch.compute(contact_triangle, contact_point, 4 * sigma);
+//     dent = palpate::dent_with_slope_limit(dent, palpate::surface_dent_max_slope);
+//     patch.compute(contact_triangle, contact_point, 4 * dent.sigma_mm);
 //     upload patch.samples()[changed.first, changed.first + changed.count) into the vertex attribute
 //     dent.along_surface = true; dent.seed_radius_mm = patch.seed_radius_mm();
+//     dent.normal = the rotation to the dent's space * patch.contact_normal();
 #include <cstdint>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
@@ -52,6 +54,8 @@ class SurfacePatch {
   Range changed() const noexcept { return changed_; }
   // The farthest corner of the contact triangle from the point (Dent::seed_radius_mm).
   float seed_radius_mm() const noexcept { return seed_radius_mm_; }
+  // The contact triangle's outward unit normal, object frame (Dent::normal once taken to world).
+  glm::vec3 contact_normal() const noexcept { return contact_normal_; }
   // Vertices (welded) in the current patch.
   std::size_t size() const noexcept { return patch_.size(); }
 
@@ -67,6 +71,7 @@ class SurfacePatch {
   std::vector<std::uint32_t> patch_;     // welded vertices with a sample now
   Range changed_;
   float seed_radius_mm_ = 0.0f;
+  glm::vec3 contact_normal_{0.0f};
 };
 
 }  // namespace palpate

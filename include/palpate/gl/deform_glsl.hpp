@@ -77,12 +77,14 @@ struct DeformBlockData {
   std::int32_t surface_dent;          // 1: the first dent falls off along the surface
   float surface_seed;                 // its blend radius, max(Dent::seed_radius_mm, 1e-4 sigma)
   std::int32_t padding;
+  glm::vec4 surface_normal;  // xyz: Dent::normal of the first dent, where it falls off along the surface
 };
 static_assert(offsetof(DeformBlockData, center_depth) == 0);
 static_assert(offsetof(DeformBlockData, shape) == 16 * max_dents);
 static_assert(offsetof(DeformBlockData, count) == 32 * max_dents);
 static_assert(offsetof(DeformBlockData, surface_seed) == 32 * max_dents + 8);
-static_assert(sizeof(DeformBlockData) == 32 * max_dents + 16);
+static_assert(offsetof(DeformBlockData, surface_normal) == 32 * max_dents + 16);
+static_assert(sizeof(DeformBlockData) == 32 * max_dents + 32);
 
 // Fills the data from `dents`: the first max_dents are taken, the rest dropped. No allocation.
 DeformBlockData make_deform_block_data(std::span<const Dent> dents) noexcept;
