@@ -21,7 +21,7 @@ namespace {
 // The weight of the sample's distance against the straight line's (deform.hpp): 0 within the contact
 // triangle's reach, 1 from twice that on.
 float surface_blend(const Dent& dent, float sample_distance) noexcept {
-  const float r = std::max(dent.seed_radius_mm, 1e-4f * dent.sigma_mm);
+  const float r = std::clamp(dent.seed_radius_mm, 1e-4f * dent.sigma_mm, 0.75f * dent.sigma_mm);
   const float t = std::clamp((sample_distance - r) / r, 0.0f, 1.0f);
   return t * t * (3.0f - 2.0f * t);
 }

@@ -226,7 +226,8 @@ DeformBlockData make_deform_block_data(std::span<const Dent> dents) noexcept {
   data.count = static_cast<std::int32_t>(count);
   if (count > 0 && dents[0].along_surface) {
     data.surface_dent = 1;
-    data.surface_seed = std::max(dents[0].seed_radius_mm, 1e-4f * dents[0].sigma_mm);  // as the CPU twin
+    data.surface_seed =  // as the CPU twin
+        std::clamp(dents[0].seed_radius_mm, 1e-4f * dents[0].sigma_mm, 0.75f * dents[0].sigma_mm);
     data.surface_normal = glm::vec4(dents[0].normal, 0.0f);
   }
   return data;

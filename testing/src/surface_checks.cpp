@@ -40,6 +40,7 @@ WeightErrors weight_errors_against_exact(const Mesh& mesh, std::uint32_t triangl
   SurfaceMesh exact_mesh;
   std::unordered_map<std::uint32_t, SurfaceMesh::Vertex_index> to_exact;
   SurfaceMesh::Face_index source_face;
+  std::size_t left_out = 0;
   const auto vertex = [&](std::uint32_t v) {
     const auto found = to_exact.find(v);
     if (found != to_exact.end()) return found->second;
@@ -52,9 +53,11 @@ WeightErrors weight_errors_against_exact(const Mesh& mesh, std::uint32_t triangl
                   glm::distance(mesh.positions_mm[c[2]], point_mm)}) > patch)
       continue;
     const auto face = exact_mesh.add_face(vertex(c[0]), vertex(c[1]), vertex(c[2]));
+    left_out += face == SurfaceMesh::null_face();
     if (t == triangle) source_face = face;
   }
   WeightErrors errors;
+  errors.faces_left_out = left_out;
   if (source_face == SurfaceMesh::null_face()) return errors;  // not addable (non-manifold there)
   // The point's barycentric coordinates in its triangle.
   const std::uint32_t* c = &mesh.indices[3 * std::size_t(triangle)];
@@ -63,16 +66,16 @@ WeightErrors weight_errors_against_exact(const Mesh& mesh, std::uint32_t triangl
   const float area = glm::dot(n, n);
   const float u = glm::dot(glm::cross(cc - b, point_mm - b), n) / area;
   const float v = glm::dot(glm::cross(a - cc, point_mm - cc), n) / area;
-  // CGAL's barycentric coordinates follow the face's own halfedge order, which need not start at c[0].
+  // CGAL's barycentric coordinates go with the face's corners in the order source(h), target(h),
+  // target(next(h)) of its halfedge h, which need not start at c[0].
   const double by_corner[3] = {double(u), double(v), double(1.0f - u - v)};
+  const auto h = exact_mesh.halfedge(source_face);
+  const SurfaceMesh::Vertex_index order[3] = {exact_mesh.source(h), exact_mesh.target(h),
+                                              exact_mesh.target(exact_mesh.next(h))};
   ShortestPaths::Barycentric_coordinates coordinates{0.0, 0.0, 0.0};
-  int k = 0;
-  for (const SurfaceMesh::Vertex_index corner :
-       CGAL::vertices_around_face(exact_mesh.halfedge(source_face), exact_mesh)) {
+  for (int k = 0; k < 3; ++k)
     for (int j = 0; j < 3; ++j)
-      if (to_exact.at(c[j]) == corner) coordinates[k] = by_corner[j];
-    ++k;
-  }
+      if (to_exact.at(c[j]) == order[k]) coordinates[k] = by_corner[j];
   ShortestPaths exact(exact_mesh);
   exact.add_source_point(source_face, coordinates);
   const auto weight = [&](double d) {
@@ -81,7 +84,9 @@ WeightErrors weight_errors_against_exact(const Mesh& mesh, std::uint32_t triangl
   for (const auto& [vertex_index, exact_vertex] : to_exact) {
     const double exact_distance = exact.shortest_distance_to_source_points(exact_vertex).first;
     if (exact_distance < 0.0 || exact_distance > reach) continue;  // -1: not connected within the patch
-    const double error = std::abs(weight(distance(vertex_index)) - weight(exact_distance));
+    const double signed_error = weight(distance(vertex_index)) - weight(exact_distance);
+    const double error = std::abs(signed_error);
+    if (error > errors.max) errors.max_signed = signed_error;
     errors.max = std::max(errors.max, error);
     errors.mean += error;
     ++errors.vertices;

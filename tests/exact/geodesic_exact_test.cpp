@@ -41,8 +41,8 @@ TEST(GeodesicAgainstExact, TheDentsWeightOnTheFoldedBrainIsCloseToTheExactOne) {
   }
   mean /= contacts;
   std::printf("%d contacts, sigma 4 mm: weight error mean %.4f, max %.4f of p\n", contacts, mean, worst);
-  // Measured: mean 0.0005, max 0.051 of p (issue 14's target, 0.03, is not met yet: the worst vertices
-  // lie over the phantom's sharp crests; on the decimated Colin27 brain max 0.082).
+  // Measured: mean 0.0007, max 0.050 of p (issue 14's target, 0.03, is not met here: the worst vertices
+  // lie over the phantom's sharp crests; on the decimated Colin27 brain, `palpate bench geodesic`).
   EXPECT_LE(mean, 0.002);
   EXPECT_LE(worst, 0.07);
 }

@@ -14,7 +14,9 @@
 // inside a triangle, that distance overestimates near the contact (the distance is a cone there, the
 // interpolation a plane), so within the contact triangle's reach (`seed_radius_mm`) it blends into the
 // straight-line one: with s the sample's distance and e = |V - c|,
-//     d = mix(e, max(s, e), smoothstep(r, 2r, s)),   r = max(seed_radius_mm, 1e-4 sigma)
+//     d = mix(e, max(s, e), smoothstep(r, 2r, s)),   r = clamp(seed_radius_mm, 1e-4 sigma, 0.75 sigma)
+// (within 1.5 sigma, so that a coarse mesh's long contact triangle cannot let the straight line reach a
+// facing bank 3 sigma away along the surface)
 // and the tilt of the normal follows the blend of VC and the sample's direction (w'(d) times the
 // distance's gradient). Only the first dent of an object can fall off along the surface (one patch per
 // object); later dents use the straight line.

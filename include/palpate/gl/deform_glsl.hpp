@@ -75,7 +75,7 @@ struct DeformBlockData {
   glm::vec4 shape[max_dents];         // x (cutoff 4 sigma)^2, y 1/(2 sigma^2), z p / sigma^2, w sigma
   std::int32_t count;                 // dents in use, 0..max_dents
   std::int32_t surface_dent;          // 1: the first dent falls off along the surface
-  float surface_seed;                 // its blend radius, max(Dent::seed_radius_mm, 1e-4 sigma)
+  float surface_seed;                 // its blend radius, clamp(Dent::seed_radius_mm, 1e-4, 0.75 sigma)
   std::int32_t padding;
   glm::vec4 surface_normal;  // xyz: Dent::normal of the first dent, where it falls off along the surface
 };

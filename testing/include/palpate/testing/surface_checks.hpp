@@ -17,7 +17,9 @@ namespace palpate::testing {
 // surface paths from below, so no shorter path leaves them). Seconds per contact at sigma 8 mm.
 struct WeightErrors {
   double mean = 0.0, max = 0.0;
+  double max_signed = 0.0;  // the largest error with its sign: > 0 where palpate's weight is the larger
   std::size_t vertices = 0;
+  std::size_t faces_left_out = 0;  // triangles CGAL's mesh could not take (non-manifold there)
 };
 WeightErrors weight_errors_against_exact(const Mesh& mesh, std::uint32_t triangle, glm::vec3 point_mm,
                                          float sigma_mm, const std::function<float(std::uint32_t)>& distance);
