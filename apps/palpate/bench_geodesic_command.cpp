@@ -236,7 +236,7 @@ void save_pictures(const std::filesystem::path& folder, const Surface& surface, 
 
 int bench_geodesic(const GeodesicOptions& options) {
   const std::size_t contacts = options.quick ? 20 : 200, exact_contacts = options.quick ? 2 : 10;
-  const std::size_t frames = options.quick ? 6 : 30, fold_presses = options.quick ? 3 : 20;
+  const std::size_t frames = options.quick ? 6 : 80, fold_presses = options.quick ? 3 : 20;
   const std::vector<float> sigmas = {2.0f, 4.0f, 8.0f};
   constexpr float bleed_weight = 0.05f, fold_sigma_mm = 4.0f;
   GlSession session = open_gl(options.headless, options.width, options.height, "palpate bench geodesic");
