@@ -8,6 +8,7 @@
 #include <epoxy/gl.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -45,6 +46,7 @@ constexpr float picture_distance_mm = 90.0f;
 
 struct GeodesicOptions {
   bool quick = false;
+  std::vector<std::string> surfaces = {"colin27", "phantom", "fsaverage5", "spm12"};
   std::string json, pictures, shared_data;
   bool headless = false;
   int width = 960, height = 768;
@@ -75,24 +77,31 @@ double median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
+bool wanted(const GeodesicOptions& options, const char* surface) {
+  return std::find(options.surfaces.begin(), options.surfaces.end(), surface) != options.surfaces.end();
+}
+
 std::vector<Surface> surfaces(const GeodesicOptions& options) {
   std::vector<Surface> out;
-  const Scene real = scene_for_option({});
-  for (const SceneObject& object : real.objects) {
-    if (object.name.find("brain") != std::string::npos &&
-        object.mesh.vertex_count() != brain_phantom_vertices)
-      out.push_back({"colin27 brain", object.mesh});
+  if (wanted(options, "colin27")) {
+    const Scene real = scene_for_option({});
+    for (const SceneObject& object : real.objects) {
+      if (object.name.find("brain") != std::string::npos &&
+          object.mesh.vertex_count() != brain_phantom_vertices)
+        out.push_back({"colin27 brain", object.mesh});
+    }
   }
-  out.push_back({"phantom brain", make_brain_phantom()});
+  if (wanted(options, "phantom")) out.push_back({"phantom brain", make_brain_phantom()});
   std::filesystem::path data = options.shared_data;
   if (data.empty()) {
     const char* env = std::getenv("PALPATE_SHARED_DATA");
     data = env && *env ? env : "../shared/data";
   }
-  const std::pair<const char*, const char*> files[] = {
-      {"fsaverage5 pial", "surfaces/fsaverage5_pial_left.gii.gz"},
-      {"spm12 cortex", "surfaces/spm12_cortex_20484.surf.gii"}};
-  for (const auto& [name, file] : files) {
+  const std::array<std::array<const char*, 3>, 2> files = {
+      {{"fsaverage5", "fsaverage5 pial", "surfaces/fsaverage5_pial_left.gii.gz"},
+       {"spm12", "spm12 cortex", "surfaces/spm12_cortex_20484.surf.gii"}}};
+  for (const auto& [key, name, file] : files) {
+    if (!wanted(options, key)) continue;
     if (std::filesystem::exists(data / file)) {
       out.push_back({name, load_mesh(data / file)});
     } else {
@@ -242,9 +251,10 @@ int bench_geodesic(const GeodesicOptions& options) {
   GlSession session = open_gl(options.headless, options.width, options.height, "palpate bench geodesic");
   const gl::Framebuffer target({.width = options.width, .height = options.height});
 
-  nlohmann::json report = {{"device", session.renderer},      {"width", options.width},
-                           {"height", options.height},        {"quick", options.quick},
-                           {"rows", nlohmann::json::array()}, {"folds", nlohmann::json::array()}};
+  nlohmann::json report = {{"benchmark", "geodesic"},         {"device", session.renderer},
+                           {"width", options.width},          {"height", options.height},
+                           {"quick", options.quick},          {"rows", nlohmann::json::array()},
+                           {"folds", nlohmann::json::array()}};
   std::printf(
       "\n| mesh | vertices | sigma mm | contacts | bleed straight | bleed geodesic | weight error mean / "
       "max (exact, %zu contacts) | update ms p50 / p99 | upload ms p50 / p99 | patch vertices p50 | "
@@ -419,6 +429,13 @@ void add_bench_geodesic_command(CLI::App& app) {
   geodesic->add_flag("--quick", options->quick,
                      "20 contacts a surface instead of 200, fewer frames and presses");
   geodesic->add_option("--json", options->json, "Also write the results to this JSON file");
+  geodesic
+      ->add_option(
+          "--surfaces", options->surfaces,
+          "Which surfaces: colin27 (the default real brain), phantom, fsaverage5, spm12 (those two from "
+          "the shared data)")
+      ->check(CLI::IsMember({"colin27", "phantom", "fsaverage5", "spm12"}))
+      ->capture_default_str();
   geodesic->add_option("--pictures", options->pictures,
                        "Folder for pictures of one press on the first surface with both falloffs");
   geodesic->add_option("--shared-data", options->shared_data,

@@ -116,3 +116,35 @@ TEST(BenchCommand, Table1AtItsSmallestGivesThePapersRows) {
 
 }  // namespace
 }  // namespace palpate
+
+namespace palpate {
+namespace {
+
+TEST(BenchCommand, GeodesicAtItsSmallestReportsEveryRowAndFold) {
+  const auto json = test::scratch_dir("bench_geodesic") / "geodesic.json";
+  const nlohmann::json report =
+      run_bench("geodesic --quick --headless --surfaces phantom --width 160 --height 128", json);
+  EXPECT_EQ(report["benchmark"], "geodesic");
+  ASSERT_EQ(report["rows"].size(), 3u);  // sigma 2, 4, 8 mm
+  for (const auto& row : report["rows"]) {
+    for (const char* key :
+         {"mesh", "vertices", "sigma_mm", "contacts", "bleed_euclidean", "bleed_geodesic",
+          "weight_error_mean", "weight_error_max", "update_ms", "upload_ms", "frame_overhead_pct"})
+      ASSERT_TRUE(row.contains(key)) << key;
+    EXPECT_EQ(row["mesh"], "phantom brain");
+    EXPECT_EQ(row["bleed_geodesic"], 0) << "the geodesic falloff bleeds across a sulcus";
+    EXPECT_GT(row["bleed_euclidean"].get<int>(), 0)
+        << "the phantom's sulci should make the straight line bleed";
+    EXPECT_LE(row["weight_error_max"].get<double>(), 0.1);
+    EXPECT_LE(row["update_ms"]["p50"].get<double>(), row["update_ms"]["p99"].get<double>());
+  }
+  ASSERT_EQ(report["folds"].size(), 15u);  // five ways of moving the surface, at 1, 2 and 3 sigma
+  for (const auto& fold : report["folds"]) {
+    for (const char* key : {"mesh", "falloff", "depth_over_sigma", "presses", "self_intersecting_triangles",
+                            "inverted_triangles"})
+      ASSERT_TRUE(fold.contains(key)) << key;
+  }
+}
+
+}  // namespace
+}  // namespace palpate
