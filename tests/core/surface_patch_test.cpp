@@ -39,8 +39,10 @@ TEST(SurfacePatch, OnAPlaneTheSamplesAreTheStraightLineDistanceAndDirection) {
       worst_angle_deg = std::max(worst_angle_deg, std::acos(cosine) * 180.0f / std::numbers::pi_v<float>);
     }
   }
-  EXPECT_LT(worst_distance, 0.12f);  // measured 0.087 mm
-  EXPECT_LT(worst_angle_deg, 5.0f);  // measured 3.9 degrees (the distances' own error over 1 mm edges)
+  // Measured 0.029 mm and 2.2 degrees (0.087 mm and 3.9 degrees marched from the contact triangle's
+  // corners alone, without the ring of seeds around them).
+  EXPECT_LT(worst_distance, 0.06f);
+  EXPECT_LT(worst_angle_deg, 3.5f);
   std::printf("plane: distance error max %.3f mm, direction error max %.2f deg\n", worst_distance,
               worst_angle_deg);
 }

@@ -214,6 +214,8 @@ TEST_F(DentedSphere, AlongTheSurfaceTheGpuEqualsTheCpuReference) {
   along[0].along_surface = true;
   along[0].seed_radius_mm = patch.seed_radius_mm();
   along[0].normal = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));  // pushed one way, not along each normal
+  along[1].along_surface = true;  // only the first dent has a patch: a later one uses the straight line
+  along[1].seed_radius_mm = 0.5f;
   const Captured gpu = capture(mesh, along, max_dents, "450 core", patch.samples());
   float worst_displacement = 0.0f, worst_angle = 0.0f, largest_change = 0.0f;
   for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {

@@ -110,9 +110,9 @@ void expect_true_normals(const Mesh& mesh, const Dent& dent, const Camera& camer
   Mesh deformed;
   if (falloff == Falloff::geodesic) {
     SurfacePatch patch(mesh);
+    Dent along = dent_with_slope_limit(dent, surface_dent_max_slope);  // as the renderer widens it
     patch.compute(-1, glm::vec3(glm::inverse(transform) * glm::vec4(dent.center_mm, 1.0f)),
-                  dent_cutoff_sigmas * dent.sigma_mm);
-    Dent along = dent;
+                  dent_cutoff_sigmas * along.sigma_mm);
     along.along_surface = true;
     along.seed_radius_mm = patch.seed_radius_mm();
     along.normal = glm::mat3(transform) * patch.contact_normal();  // as the renderer pushes it
@@ -192,14 +192,15 @@ TEST(RendererNormals, AlongTheSurfaceTheRotatedPlaneMatchesTheTrueNormals) {
 }
 
 // Along the surface on the sphere every vertex is pushed against the contact triangle's normal, not its
-// own: the shading normals must follow that surface (N + (N x grad G) x n), not the paper's.
+// own: the shading normals must follow that surface (N + (N x grad G) x n), not the paper's. The press
+// is deep for its sigma (slope 0.91): the renderer widens it to slope 0.75, as the reference does.
 TEST(RendererNormals, AlongTheSurfaceTheFineSphereMatchesTheTrueNormals) {
   test::gl_context();
   const Mesh sphere = make_sphere(40.0f, 80000);
   const glm::vec3 contact = glm::normalize(glm::vec3(0.3f, -1.0f, 0.4f)) * 40.0f;
-  // Measured: mean 0.018, p99 0.158 degrees; in the dent 0.047, 0.218.
-  expect_true_normals(sphere, Dent{contact, 4.0f, 6.0f}, looking_at({20.0f, -130.0f, 60.0f}, {0, 0, 0}),
-                      {0.06f, 0.5f}, {0.15f, 0.65f}, glm::mat4(1.0f), Falloff::geodesic);
+  // Measured: mean 0.029, p99 0.338 degrees; in the dent 0.100, 0.484.
+  expect_true_normals(sphere, Dent{contact, 6.0f, 4.0f}, looking_at({20.0f, -130.0f, 60.0f}, {0, 0, 0}),
+                      {0.09f, 1.0f}, {0.3f, 1.4f}, glm::mat4(1.0f), Falloff::geodesic);
 }
 
 TEST(RendererNormals, FineSphereMatchesTheTrueNormals) {
