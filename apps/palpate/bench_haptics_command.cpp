@@ -1,7 +1,9 @@
 // palpate bench haptics: what one haptic tick costs on the Table I meshes and on 1M and 10M
-// triangles, free and in sliding contact; the sphere-slide reference scenario with its correctness
-// counts; BVH build time and size; the haptic thread's achieved rate and period error at 1 and
-// 10 kHz, idle and with both cores loaded by other processes. A printed table and --json FILE.
+// triangles, free and in sliding contact, with the other core idle, streaming memory or rendering
+// (co_runner.hpp); the sphere-slide reference scenario with its correctness counts; BVH build time and
+// size; the haptic thread's achieved rate and period error at 1 and 10 kHz, idle and with both cores
+// loaded by other processes, with the host's steal time. A printed table and --json FILE.
+#include <algorithm>
 #include <chrono>
 #include <cstdio>
 #include <fstream>
@@ -12,6 +14,7 @@
 #include <thread>
 #include <vector>
 
+#include "co_runner.hpp"
 #include "commands.hpp"
 #include "format.hpp"
 #include "palpate/core/bvh.hpp"
@@ -31,6 +34,7 @@ using Clock = std::chrono::steady_clock;
 
 struct Options {
   bool quick = false;
+  std::vector<std::string> loads = {"idle", "memory", "render"};
   std::string json;
   std::uint32_t seed = 1;
   int cycles = 0;             // > 0: this many cycles in every scenario (a smoke run)
@@ -43,7 +47,7 @@ int cycles(const Options& options, int usual) {
 }
 
 struct TickRow {
-  std::string scenario, mesh;
+  std::string scenario, mesh, load;
   std::size_t triangles = 0;
   std::string state;  // "free" or "contact"
   std::size_t ticks = 0;
@@ -64,6 +68,7 @@ struct LoopRow {
   std::uint64_t ticks = 0, missed = 0;
   Percentiles period_error_us, tick_us;
   bool sched_fifo = false;
+  double steal_ms = -1.0;  // the host's, over the machine's CPUs, during the row; -1: unknown
 };
 
 struct Report {
@@ -92,11 +97,12 @@ Prepared prepare(Scene scene, const std::string& name, Report& report) {
   return {std::move(scene), std::move(bvh)};
 }
 
-void add_rows(const std::string& scenario, const std::string& mesh, std::size_t triangles,
+void add_rows(const std::string& scenario, const std::string& mesh, Load load, std::size_t triangles,
               testing::ScenarioResult result, bool keep_free, bool keep_contact, Report& report) {
   if (keep_free) {
     report.rows.push_back({scenario,
                            mesh,
+                           load_name(load),
                            triangles,
                            "free",
                            result.free_tick_us.size(),
@@ -104,10 +110,23 @@ void add_rows(const std::string& scenario, const std::string& mesh, std::size_t 
                            {}});
   }
   if (keep_contact) {
-    report.rows.push_back({scenario, mesh, triangles, "contact", result.contact_tick_us.size(),
-                           percentiles(result.contact_tick_us), result.counts});
+    report.rows.push_back({scenario, mesh, load_name(load), triangles, "contact",
+                           result.contact_tick_us.size(), percentiles(result.contact_tick_us),
+                           result.counts});
   }
 }
+
+std::vector<Load> loads_of(const Options& options) {
+  std::vector<Load> loads;
+  for (const Load load : {Load::idle, Load::memory, Load::render}) {
+    if (std::find(options.loads.begin(), options.loads.end(), load_name(load)) != options.loads.end())
+      loads.push_back(load);
+  }
+  return loads;
+}
+
+// The ticks are timed on core 0 while the load runs on core 1 (where there are two).
+constexpr int tick_core = 0, load_core = 1;
 
 SceneObject object(std::string name, Mesh mesh, Material material = {}) {
   SceneObject o;
@@ -145,12 +164,18 @@ void bench_table1(const Options& options, Report& report) {
     const std::size_t triangles = prepared.bvh.triangle_count();
     const testing::MeshOracle oracle(prepared.scene);
     const auto hovers = testing::surface_press_slides(prepared.scene, touched, oracle, hover);
-    add_rows("hover", c.name, triangles,
-             testing::run_scenario(prepared.scene, prepared.bvh, hovers, 1e3f, nullptr), true, false, report);
     const auto presses = testing::surface_press_slides(prepared.scene, touched, oracle, press);
-    add_rows("press-slide", c.name, triangles,
-             testing::run_scenario(prepared.scene, prepared.bvh, presses, 1e3f, &oracle), false, true,
-             report);
+    for (const Load load : loads_of(options)) {
+      progress(std::string("  load: ") + load_name(load));
+      const CoRunner co_runner(load, load_core);
+      const PinnedToCore pinned(tick_core);
+      add_rows("hover", c.name, load, triangles,
+               testing::run_scenario(prepared.scene, prepared.bvh, hovers, 1e3f, nullptr), true, false,
+               report);
+      add_rows("press-slide", c.name, load, triangles,
+               testing::run_scenario(prepared.scene, prepared.bvh, presses, 1e3f, &oracle), false, true,
+               report);
+    }
   }
 }
 
@@ -172,17 +197,21 @@ void bench_sphere_slide(const Options& options, Report& report) {
     const Prepared prepared = prepare(std::move(scene), name, report);
     const std::size_t triangles = prepared.bvh.triangle_count();
     const testing::CycleShape slide{.cycles = cycles(options, 50), .seed = options.seed};
-    add_rows("sphere-slide", name, triangles,
-             testing::run_scenario(prepared.scene, prepared.bvh, testing::sphere_slide(oracle, slide), 1e3f,
-                                   &oracle),
-             false, true, report);
     testing::CycleShape hover{.cycles = cycles(options, 10), .seed = options.seed + 1};
     hover.press_depth_mm = -3.0f;
     hover.depth_amplitude_mm = 1.0f;
-    add_rows("sphere-hover", name, triangles,
-             testing::run_scenario(prepared.scene, prepared.bvh, testing::sphere_slide(oracle, hover), 1e3f,
-                                   nullptr),
-             true, false, report);
+    const auto slides = testing::sphere_slide(oracle, slide), hovers = testing::sphere_slide(oracle, hover);
+    for (const Load load : loads_of(options)) {
+      progress(std::string("  load: ") + load_name(load));
+      const CoRunner co_runner(load, load_core);
+      const PinnedToCore pinned(tick_core);
+      add_rows("sphere-slide", name, load, triangles,
+               testing::run_scenario(prepared.scene, prepared.bvh, slides, 1e3f, &oracle), false, true,
+               report);
+      add_rows("sphere-hover", name, load, triangles,
+               testing::run_scenario(prepared.scene, prepared.bvh, hovers, 1e3f, nullptr), true, false,
+               report);
+    }
   }
 }
 
@@ -213,6 +242,7 @@ LoopRow run_loop(const Prepared& prepared, const SampledPath& press, double rate
   row.period_error_us = stats.period_error_us;
   row.tick_us = stats.tick_us;
   row.sched_fifo = loop.realtime();
+  row.steal_ms = stats.steal_ms;
   return row;
 }
 
@@ -243,13 +273,13 @@ void print(const Report& report, const Options& options) {
   std::printf(
       "Tick cost (device read, proxy step on the BVH, spring-damper, device write), simulated 1 ms ticks, "
       "us\n");
-  std::printf("%-13s %-21s %11s %-8s %8s %7s %7s %7s %8s | %5s %6s %6s %5s %7s\n", "scenario", "mesh",
-              "triangles", "state", "ticks", "p50", "p99", "p99.9", "max", "pop", "inward", "inside", "stuck",
-              "max N");
+  std::printf("%-13s %-21s %-7s %11s %-8s %8s %7s %7s %7s %8s | %5s %6s %6s %5s %7s\n", "scenario", "mesh",
+              "load", "triangles", "state", "ticks", "p50", "p99", "p99.9", "max", "pop", "inward", "inside",
+              "stuck", "max N");
   for (const TickRow& row : report.rows) {
-    std::printf("%-13s %-21s %11s %-8s %8zu %7.2f %7.2f %7.2f %8.2f", row.scenario.c_str(), row.mesh.c_str(),
-                with_thousands(row.triangles).c_str(), row.state.c_str(), row.ticks, row.tick_us.p50,
-                row.tick_us.p99, row.tick_us.p999, row.tick_us.max);
+    std::printf("%-13s %-21s %-7s %11s %-8s %8zu %7.2f %7.2f %7.2f %8.2f", row.scenario.c_str(),
+                row.mesh.c_str(), row.load.c_str(), with_thousands(row.triangles).c_str(), row.state.c_str(),
+                row.ticks, row.tick_us.p50, row.tick_us.p99, row.tick_us.p999, row.tick_us.max);
     if (row.checks) {
       std::printf(" | %5llu %6llu %6llu %5llu %7.2f\n", (unsigned long long)row.checks->pop_through_steps,
                   (unsigned long long)row.checks->inward_force_steps,
@@ -266,14 +296,15 @@ void print(const Report& report, const Options& options) {
                 row.seconds, row.bytes_per_triangle, row.seconds * 1e3 / (double(row.triangles) * 1e-6));
   }
   std::printf("\nHaptic thread (Table I scene, scripted press-slide)\n");
-  std::printf("%9s %-7s %7s %10s %10s %7s | %-33s | %8s %5s\n", "target Hz", "load", "seconds", "achieved",
-              "last 1 s", "missed", "period error us p50/p99/p99.9/max", "tick p999", "FIFO");
+  std::printf("%9s %-7s %7s %10s %10s %7s | %-33s | %8s %5s %9s\n", "target Hz", "load", "seconds",
+              "achieved", "last 1 s", "missed", "period error us p50/p99/p99.9/max", "tick p999", "FIFO",
+              "steal ms");
   for (const LoopRow& row : report.loops) {
-    std::printf("%9.0f %-7s %7.2f %10.1f %10.1f %7llu | %7.2f %7.2f %8.2f %8.2f | %8.2f %5s\n", row.target_hz,
-                row.load.c_str(), row.seconds, row.achieved_hz, row.achieved_hz_last_second,
+    std::printf("%9.0f %-7s %7.2f %10.1f %10.1f %7llu | %7.2f %7.2f %8.2f %8.2f | %8.2f %5s %9.1f\n",
+                row.target_hz, row.load.c_str(), row.seconds, row.achieved_hz, row.achieved_hz_last_second,
                 (unsigned long long)row.missed, row.period_error_us.p50, row.period_error_us.p99,
                 row.period_error_us.p999, row.period_error_us.max, row.tick_us.p999,
-                row.sched_fifo ? "yes" : "no");
+                row.sched_fifo ? "yes" : "no", row.steal_ms);
   }
   std::printf(
       "\nThe counts are defined once, in testing/include/palpate/testing/haptic_scenarios.hpp "
@@ -296,9 +327,13 @@ void write_json(const Report& report, const Options& options) {
   nlohmann::json rows = nlohmann::json::array(), builds = nlohmann::json::array(),
                  loops = nlohmann::json::array();
   for (const TickRow& row : report.rows) {
-    nlohmann::json r = {{"scenario", row.scenario},   {"mesh", row.mesh},
-                        {"triangles", row.triangles}, {"state", row.state},
-                        {"ticks", row.ticks},         {"tick_us", percentiles_json(row.tick_us)}};
+    nlohmann::json r = {{"scenario", row.scenario},
+                        {"mesh", row.mesh},
+                        {"load", row.load},
+                        {"triangles", row.triangles},
+                        {"state", row.state},
+                        {"ticks", row.ticks},
+                        {"tick_us", percentiles_json(row.tick_us)}};
     if (row.checks) {
       r["checks"] = {{"pop_through_steps", row.checks->pop_through_steps},
                      {"inward_force_steps", row.checks->inward_force_steps},
@@ -324,7 +359,8 @@ void write_json(const Report& report, const Options& options) {
                      {"missed", row.missed},
                      {"period_error_us", percentiles_json(row.period_error_us)},
                      {"tick_us", percentiles_json(row.tick_us)},
-                     {"sched_fifo", row.sched_fifo}});
+                     {"sched_fifo", row.sched_fifo},
+                     {"steal_ms", row.steal_ms}});
   }
   const nlohmann::json document = {
       {"benchmark", "haptics"}, {"quick", options.quick},
@@ -354,6 +390,13 @@ void add_bench_haptics_command(CLI::App& app) {
       "--quick", options->quick,
       "Reduced set: Table I meshes, sphere-slide at 22,952 and 53,022 triangles, 1 kHz loop for 3 s");
   haptics->add_option("--json", options->json, "Also write the results to this JSON file");
+  haptics
+      ->add_option(
+          "--loads", options->loads,
+          "Work on the other core while the ticks are timed: idle, memory (streaming 128 MiB), render "
+          "(the renderer drawing the Table I scene)")
+      ->check(CLI::IsMember({"idle", "memory", "render"}))
+      ->capture_default_str();
   haptics->add_option("--seed", options->seed, "Seed of the random surface points and directions")
       ->capture_default_str();
   haptics->add_option("--cycles", options->cycles, "Cycles of every scenario (default: 10 to 50 each)")

@@ -10,6 +10,7 @@
 #include <string>
 
 #include "palpate/core/error.hpp"
+#include "palpate/haptics/host_steal.hpp"
 
 namespace palpate {
 namespace {
@@ -112,6 +113,7 @@ void HapticLoop::thread_main() noexcept {
 void HapticLoop::start() {
   if (running()) throw Error("haptic loop: start() while already running");
   stop_requested_.store(false, std::memory_order_relaxed);
+  steal_at_start_ms_.store(host_steal_ms().value_or(-1.0), std::memory_order_relaxed);
   begin_run();  // here, not on the thread: run_time_s() is valid as soon as start() returns
   thread_ = std::thread([this] { thread_main(); });
   bool granted = false;
@@ -126,6 +128,14 @@ void HapticLoop::start() {
     }
   }
   realtime_.store(granted, std::memory_order_relaxed);
+}
+
+LoopStatistics HapticLoop::statistics() const {
+  LoopStatistics statistics = stats_.snapshot();
+  const double at_start = steal_at_start_ms_.load(std::memory_order_relaxed);
+  const std::optional<double> now = host_steal_ms();
+  if (now && at_start >= 0.0) statistics.steal_ms = *now - at_start;
+  return statistics;
 }
 
 double HapticLoop::run_time_s() const noexcept {

@@ -33,12 +33,16 @@ void expect_ordered(const nlohmann::json& p, const std::string& what) {
 
 TEST(BenchCommand, HapticsAtItsSmallestReportsCleanCountsAndARate) {
   const auto json = test::scratch_dir("bench_haptics") / "haptics.json";
-  const nlohmann::json report = run_bench("haptics --quick --cycles 1 --loop-seconds 0.5", json);
+  const nlohmann::json report =
+      run_bench("haptics --quick --cycles 1 --loop-seconds 0.5 --loads idle memory", json);
   EXPECT_EQ(report["benchmark"], "haptics");
   ASSERT_FALSE(report["rows"].empty());
   int contact_rows = 0;
+  std::map<std::string, int> rows_by_load;
   for (const auto& row : report["rows"]) {
-    const std::string what = row["scenario"].get<std::string>() + " " + row["mesh"].get<std::string>();
+    const std::string what = row["scenario"].get<std::string>() + " " + row["mesh"].get<std::string>() + " " +
+                             row["load"].get<std::string>();
+    ++rows_by_load[row["load"].get<std::string>()];
     EXPECT_GT(row["triangles"].get<int>(), 0) << what;
     EXPECT_GT(row["ticks"].get<int>(), 0) << what;
     expect_ordered(row["tick_us"], what);
@@ -51,7 +55,9 @@ TEST(BenchCommand, HapticsAtItsSmallestReportsCleanCountsAndARate) {
     }
     EXPECT_GT(checks["max_force_n"].get<double>(), 0.5) << what << ": it pressed";
   }
-  EXPECT_EQ(contact_rows, 5) << "brain, skin, brain+skin and two sphere-slides";
+  EXPECT_EQ(contact_rows, 10) << "brain, skin, brain+skin and two sphere-slides, idle and streaming memory";
+  EXPECT_EQ(rows_by_load.size(), 2u);
+  EXPECT_EQ(rows_by_load["idle"], rows_by_load["memory"]);
   for (const auto& build : report["build"]) EXPECT_NEAR(build["bytes_per_triangle"].get<double>(), 60.0, 2.0);
   ASSERT_EQ(report["loop"].size(), 2u) << "1 kHz idle and loaded";
   for (const auto& loop : report["loop"]) {
@@ -59,6 +65,7 @@ TEST(BenchCommand, HapticsAtItsSmallestReportsCleanCountsAndARate) {
     EXPECT_GT(loop["achieved_hz"].get<double>(), 200.0);
     EXPECT_LT(loop["achieved_hz"].get<double>(), 1100.0);
     expect_ordered(loop["period_error_us"], "period error");
+    EXPECT_GE(loop["steal_ms"].get<double>(), 0.0) << "/proc/stat gives the host's steal";
   }
 }
 

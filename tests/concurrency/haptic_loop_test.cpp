@@ -8,6 +8,7 @@
 #include <chrono>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <optional>
 #include <thread>
 #include <vector>
 
@@ -15,6 +16,7 @@
 #include "palpate/core/bvh.hpp"
 #include "palpate/core/error.hpp"
 #include "palpate/core/shapes.hpp"
+#include "palpate/haptics/host_steal.hpp"
 #include "palpate/haptics/scripted_device.hpp"
 
 namespace palpate {
@@ -96,6 +98,30 @@ TEST(HapticLoopThreadTest, StartsStopsAndRestarts) {
   ASSERT_TRUE(eventually([&] { return loop.statistics().ticks >= ticks_after_stop + 20; }));
   EXPECT_GT(loop.latest().contact.tick, ticks_after_stop) << "tick numbers go on after a restart";
 }  // the destructor stops the running loop
+
+// The host's steal time is read from /proc/stat at start() and statistics(), never on the loop thread:
+// a count since the run began, zero or more, none before the first start; the whole machine's count
+// only grows.
+TEST(HapticLoopThreadTest, StatisticsCountTheHostsStealSinceTheRunBegan) {
+  const std::optional<double> before = host_steal_ms();
+  ASSERT_TRUE(before.has_value()) << "/proc/stat has no steal column";
+  const Scene scene = cube_scene();
+  const Bvh bvh = Bvh::build(scene);
+  ScriptedDevice device(press_on_top_face(), true);
+  HapticLoopParams params;
+  params.realtime_priority = false;
+  HapticLoop loop(device, scene, bvh, params);
+  EXPECT_EQ(loop.statistics().steal_ms, -1.0) << "no run yet";
+  loop.start();
+  ASSERT_TRUE(eventually([&] { return loop.statistics().ticks >= 20; }));
+  loop.stop();
+  const double during = loop.statistics().steal_ms;
+  const std::optional<double> after = host_steal_ms();
+  ASSERT_TRUE(after.has_value());
+  EXPECT_GE(during, 0.0);
+  EXPECT_LE(during, *after - *before);
+  EXPECT_GE(*after, *before);
+}
 
 TEST(HapticLoopThreadTest, ContactsAdvanceAndStayWholeWhileReadersPoll) {
   const Scene scene = cube_scene();

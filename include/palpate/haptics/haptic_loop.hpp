@@ -80,8 +80,9 @@ class HapticLoop {
   // The latest tick's result. Any thread, never blocks the loop, no allocation.
   TickResult latest() const noexcept { return results_.load(); }
   const Latest<TickResult>& results() const noexcept { return results_; }
-  // Any thread, never blocks the loop; allocates a copy of the statistics window.
-  LoopStatistics statistics() const { return stats_.snapshot(); }
+  // Any thread, never blocks the loop; allocates a copy of the statistics window, and reads the host's
+  // steal time (/proc/stat) on the calling thread.
+  LoopStatistics statistics() const;
 
   // From the next tick on, object `object` feels like `material` (stiffness, damping, touchability),
   // with no restart. Any thread (callers are serialised among themselves; the haptic thread never
@@ -120,8 +121,9 @@ class HapticLoop {
   Latest<DeviceTransform> device_to_scene_;
   std::uint64_t device_to_scene_applied_ = 0;  // loop thread: the version it applied
 
-  std::atomic<std::int64_t> origin_ns_{0};  // device time 0 of this run
-  std::int64_t period_start_ns_ = 0;        // grid point the next tick waits for
+  std::atomic<std::int64_t> origin_ns_{0};       // device time 0 of this run
+  std::atomic<double> steal_at_start_ms_{-1.0};  // host_steal_ms() when this run started
+  std::int64_t period_start_ns_ = 0;             // grid point the next tick waits for
   bool first_of_run_ = true;
   std::uint64_t next_tick_ = 0;
 

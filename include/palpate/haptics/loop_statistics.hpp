@@ -39,6 +39,9 @@ struct LoopStatistics {
   std::array<std::uint32_t, histogram_bins> period_histogram{};
   // The window's periods in tick order, oldest first, us: for plots over time.
   std::vector<float> periods_us;
+  // The host's steal time over the machine's CPUs since the loop's last start (host_steal.hpp), ms; -1
+  // where the system does not say. Filled by HapticLoop::statistics.
+  double steal_ms = -1.0;
 };
 
 // Single writer (the loop thread), any number of readers.
