@@ -85,7 +85,10 @@ void compute_displacement_directions(Mesh& mesh, float weld_tolerance_mm) {
 }
 
 Mesh weld_by_position(const Mesh& mesh, float tolerance_mm) {
-  const PositionGroups groups = group_positions(mesh, tolerance_mm);
+  return weld_by_position(mesh, group_positions(mesh, tolerance_mm));
+}
+
+Mesh weld_by_position(const Mesh& mesh, const PositionGroups& groups) {
   Mesh welded;
   welded.positions_mm.resize(groups.count);
   for (std::size_t v = 0; v < mesh.positions_mm.size(); ++v)

@@ -5,13 +5,14 @@
 #include <limits>
 
 #include "palpate/core/bvh.hpp"
-#include "palpate/core/displacement.hpp"
 
 namespace palpate {
 
 SurfacePatch::SurfacePatch(const Mesh& mesh)
-    : welded_(weld_by_position(mesh, default_weld_tolerance_mm(mesh))), field_(welded_) {
-  const PositionGroups groups = group_positions(mesh, default_weld_tolerance_mm(mesh));
+    : SurfacePatch(mesh, group_positions(mesh, default_weld_tolerance_mm(mesh))) {}
+
+SurfacePatch::SurfacePatch(const Mesh& mesh, const PositionGroups& groups)
+    : welded_(weld_by_position(mesh, groups)), field_(welded_) {
   first_copy_.assign(groups.count + 1, 0);
   for (const std::uint32_t g : groups.group) ++first_copy_[g + 1];
   for (std::size_t g = 0; g < groups.count; ++g) first_copy_[g + 1] += first_copy_[g];
@@ -68,8 +69,7 @@ void SurfacePatch::compute(std::int64_t triangle, glm::vec3 point_mm, float radi
   contact_normal_ = glm::length(face) > 0.0f ? glm::normalize(face) : glm::vec3(0.0f);
   seed_radius_mm_ = 0.0f;
   for (int k = 0; k < 3; ++k) {
-    const glm::vec3 corner = welded_.positions_mm[welded_.indices[3 * std::size_t(contact) + k]];
-    seed_radius_mm_ = std::max(seed_radius_mm_, glm::distance(corner, point_mm));
+    seed_radius_mm_ = std::max(seed_radius_mm_, glm::distance(welded_.positions_mm[corners[k]], point_mm));
   }
 
   // The direction of the distance's gradient at each vertex: the area-weighted mean of the gradients
@@ -80,7 +80,6 @@ void SurfacePatch::compute(std::int64_t triangle, glm::vec3 point_mm, float radi
   for (const std::uint32_t v : reached) {
     for (const std::uint32_t t : field_.triangles_around(v)) {
       const std::uint32_t* c = &welded_.indices[3 * std::size_t(t)];
-      if (c[0] != v && c[1] != v && c[2] != v) continue;
       if (!in_patch(c[0]) || !in_patch(c[1]) || !in_patch(c[2])) continue;
       const glm::vec3 p0 = welded_.positions_mm[c[0]];
       const glm::vec3 e1 = welded_.positions_mm[c[1]] - p0, e2 = welded_.positions_mm[c[2]] - p0;

@@ -37,5 +37,7 @@ inline void compute_displacement_directions(Mesh& mesh) {
 // The mesh with one vertex per position (its triangles re-indexed, positions only): the surface as a
 // surface, for topology (closed, manifold, components, genus) whatever its shading splits. Allocates.
 Mesh weld_by_position(const Mesh& mesh, float tolerance_mm);
+// The same from groups already found for `mesh` (group_positions).
+Mesh weld_by_position(const Mesh& mesh, const PositionGroups& groups);
 
 }  // namespace palpate

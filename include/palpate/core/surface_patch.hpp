@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "palpate/core/deform.hpp"
+#include "palpate/core/displacement.hpp"
 #include "palpate/core/geodesic.hpp"
 #include "palpate/core/mesh.hpp"
 
@@ -60,6 +61,7 @@ class SurfacePatch {
   std::size_t size() const noexcept { return patch_.size(); }
 
  private:
+  SurfacePatch(const Mesh& mesh, const PositionGroups& groups);
   std::uint32_t closest_triangle(glm::vec3 point_mm) const noexcept;
   void write(std::uint32_t welded_vertex, glm::vec4 sample) noexcept;
 
