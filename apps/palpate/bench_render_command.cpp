@@ -34,6 +34,7 @@
 #include "palpate/gl/headless_context.hpp"
 #include "palpate/gl/png.hpp"
 #include "palpate/gl/renderer.hpp"
+#include "palpate/gl/stereo_compositor.hpp"
 
 namespace palpate::cli {
 namespace {
@@ -51,6 +52,7 @@ struct Variant {
   const char* name;
   gl::Deformation deformation;
   bool skip_unreached;
+  gl::StereoMode stereo = gl::StereoMode::mono;  // not mono: both eyes drawn and combined
 };
 
 constexpr Variant variants[] = {
@@ -59,6 +61,9 @@ constexpr Variant variants[] = {
     {"cpu-naive", gl::Deformation::cpu_naive, true},
     // The shaders' own cost, as an application that runs the GLSL snippet over a whole mesh pays it.
     {"deform-unculled", gl::Deformation::gpu, false},
+    // Stereo: each eye at half the frame, combined side by side; each eye whole, combined red-cyan.
+    {"deform-stereo-side-by-side", gl::Deformation::gpu, true, gl::StereoMode::side_by_side},
+    {"deform-stereo-anaglyph", gl::Deformation::gpu, true, gl::StereoMode::anaglyph},
 };
 
 SceneObject object(std::string name, Mesh mesh, float sigma_mm, glm::vec3 color) {
@@ -110,6 +115,7 @@ struct Camera {
   glm::mat4 view, projection;
   glm::vec3 eye;
   float near_mm, far_mm;
+  float fov_y_rad, distance_mm;  // to the scene's centre
 };
 
 // The whole scene in view, seen from behind (-y; the face looks along +y) and a little above.
@@ -125,8 +131,12 @@ Camera frame_scene(const Scene& scene, int width, int height) {
   const float distance = radius / std::sin(0.5f * fov) * 1.05f;
   const glm::vec3 eye = center + distance * glm::normalize(glm::vec3(0.15f, -1.0f, 0.35f));
   return {glm::lookAt(eye, center, glm::vec3(0, 0, 1)),
-          glm::perspective(fov, float(width) / float(height), 0.05f * distance, 4.0f * distance), eye,
-          0.05f * distance, 4.0f * distance};
+          glm::perspective(fov, float(width) / float(height), 0.05f * distance, 4.0f * distance),
+          eye,
+          0.05f * distance,
+          4.0f * distance,
+          fov,
+          distance};
 }
 
 // A dent on the visible surface: the vertex of the first (outermost) object that reaches furthest
@@ -176,6 +186,7 @@ int bench_render(const BenchOptions& options) {
   const std::string device = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   const bool timed = timer_queries_trustworthy(device);
   const gl::Framebuffer target({options.width, options.height});
+  gl::StereoCompositor compositor;
   GLuint query = 0;
   glGenQueries(1, &query);
   std::printf("palpate bench render: %s (%s), %dx%d, %.1f s per variant in %d interleaved rounds\n",
@@ -203,14 +214,29 @@ int bench_render(const BenchOptions& options) {
     std::printf(" %s vertices, %s triangles\n", with_thousands(vertices).c_str(),
                 with_thousands(triangles).c_str());
 
+    StereoCamera eyes;
+    eyes.convergence_mm = camera.distance_mm;  // zero parallax at the scene's centre
     const auto frame = [&](const Variant& variant) {
       gl::DrawParams draw;
       draw.deformation = variant.deformation;
       draw.skip_unreached = variant.skip_unreached;
       target.bind();
-      glClearColor(0.08f, 0.08f, 0.1f, 1.0f);
-      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-      renderer->draw(camera.view, camera.projection, {&contact, 1}, draw);
+      const auto draw_with = [&](const glm::mat4& view, const glm::mat4& projection) {
+        glClearColor(0.08f, 0.08f, 0.1f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        renderer->draw(view, projection, {&contact, 1}, draw);
+      };
+      if (variant.stereo == gl::StereoMode::mono) {
+        draw_with(camera.view, camera.projection);
+        return;
+      }
+      compositor.render(variant.stereo, gl::Mirror::none, options.width, options.height,
+                        [&](const gl::EyeTarget& eye_target) {
+                          const EyeView eye =
+                              eyes.eye(eye_target.eye, {camera.view, camera.fov_y_rad, eye_target.aspect,
+                                                        camera.near_mm, camera.far_mm});
+                          draw_with(eye.view, eye.projection);
+                        });
     };
     for (const Variant& variant : variants) {  // warm-up: shader compilation, CPU-naive buffers
       frame(variant);
@@ -269,7 +295,7 @@ int bench_render(const BenchOptions& options) {
   }
   glDeleteQueries(1, &query);
 
-  std::printf("\n%-6s %11s %11s  %-8s %-16s %9s %9s %9s %7s  %s\n", "mesh", "vertices", "triangles",
+  std::printf("\n%-6s %11s %11s  %-8s %-26s %9s %9s %9s %7s  %s\n", "mesh", "vertices", "triangles",
               "toolkit", "variant", "fps", "gpu ms", "cpu ms", "frames", "vs plain");
   for (const Row& row : rows) {
     const auto plain = std::find_if(rows.begin(), rows.end(), [&](const Row& r) {
@@ -277,7 +303,7 @@ int bench_render(const BenchOptions& options) {
     });
     char gpu[16] = "null";
     if (row.gpu_ms) std::snprintf(gpu, sizeof gpu, "%.3f", *row.gpu_ms);
-    std::printf("%-6s %11s %11s  %-8s %-16s %9.1f %9s %9.2f %7d  %+.1f%%\n", row.mesh.c_str(),
+    std::printf("%-6s %11s %11s  %-8s %-26s %9.1f %9s %9.2f %7d  %+.1f%%\n", row.mesh.c_str(),
                 with_thousands(row.vertices).c_str(), with_thousands(row.triangles).c_str(),
                 row.toolkit.c_str(), row.variant.c_str(), row.fps, gpu, row.cpu_ms, row.frames,
                 100.0 * (plain->fps / row.fps - 1.0));

@@ -17,6 +17,7 @@
 #include "palpate/gl/png.hpp"
 #include "palpate/gl/probe_run.hpp"
 #include "report.hpp"
+#include "stereo_options.hpp"
 
 namespace palpate::cli {
 namespace {
@@ -28,6 +29,7 @@ struct DemoOptions {
   bool headless = false;
   int width = 1280, height = 1024;
   double video_fps = 30.0;
+  StereoChoice stereo;
 };
 
 // Frames go to an MP4 through ffmpeg when it is installed, else to numbered PNGs.
@@ -129,6 +131,21 @@ int run_demo(const DemoOptions& options) {
               scene.vertex_count(), gl_session.window ? "window" : "headless EGL",
               gl_session.renderer.c_str(), out.string().c_str());
 
+  gl::StereoMode stereo = stereo_mode(options.stereo);
+  if (stereo == gl::StereoMode::quad_buffer) {
+    std::fprintf(
+        stderr,
+        "palpate demo: quad-buffered stereo needs a window's back buffers and the demo draws its frames "
+        "offscreen (for the files): side-by-side instead\n");
+    stereo = gl::StereoMode::side_by_side;
+  }
+  if (composited(options.stereo)) {
+    std::printf("  stereo %s, mirror %s, eyes %.0f mm apart, zero parallax %s\n", options.stereo.mode.c_str(),
+                options.stereo.mirror.c_str(), options.stereo.eye_separation_mm,
+                options.stereo.convergence_mm > 0.0f
+                    ? (std::to_string(int(options.stereo.convergence_mm)) + " mm").c_str()
+                    : "at what each phase's camera looks at");
+  }
   gl::Framebuffer framebuffer(
       {.width = options.width, .height = options.height, .color = gl::ColorFormat::rgba8, .samples = 0});
   gl::Renderer renderer;
@@ -148,6 +165,9 @@ int run_demo(const DemoOptions& options) {
     run.capture_fps = options.video_fps;
     run.max_captures = options.frames;
     run.window = gl_session.window.get();
+    run.stereo = stereo;
+    run.mirror = mirror(options.stereo);
+    run.stereo_camera = stereo_camera(options.stereo, phase.camera);
     run.on_capture = [&](const gl::CapturedFrame& frame) {
       Image full{framebuffer.width(), framebuffer.height(), frame.framebuffer->read_rgba8()};
       writer.write(full);
@@ -210,6 +230,7 @@ void add_demo_command(CLI::App& app) {
       ->check(CLI::PositiveNumber);
   demo->add_flag("--headless", options->headless, "Render through EGL even when there is a display");
   add_size_options(demo, options->width, options->height, "Frame");
+  add_stereo_options(demo, options->stereo);
   on_selected(demo, [options] { return run_demo(*options); });
 }
 

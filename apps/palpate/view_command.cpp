@@ -26,6 +26,7 @@
 #include "palpate/gl/renderer.hpp"
 #include "palpate/haptics/haptic_loop.hpp"
 #include "palpate/haptics/virtual_device.hpp"
+#include "stereo_options.hpp"
 
 namespace palpate::cli {
 namespace {
@@ -36,6 +37,7 @@ struct ViewOptions {
   int frames = -1;              // quit after this many frames (for scripted runs)
   std::string screenshot;       // write the last frame here before quitting
   float press_depth_mm = 0.0f;  // start with the tip this deep under the window's centre
+  StereoChoice stereo;
 };
 
 // Hands the panel's edited materials to the haptic loop (stiffness, damping, touchability: from its next
@@ -114,8 +116,13 @@ glm::vec3 tip_under_cursor(const OrbitCamera& camera, glm::vec2 cursor, glm::vec
 }
 
 struct Panel {
-  float scale = 1.0f;   // scene_scale: the probe's sizes follow the scene's
-  int deformation = 0;  // gl::Deformation: gpu, cpu_naive, none
+  float scale = 1.0f;                      // scene_scale: the probe's sizes follow the scene's
+  int deformation = 0;                     // gl::Deformation: gpu, cpu_naive, none
+  int stereo = 0;                          // gl::StereoMode
+  int mirror = 0;                          // gl::Mirror
+  bool quad_buffers = false;               // the window has them: offer quad_buffer
+  bool convergence_follows_camera = true;  // zero parallax at what the camera looks at
+  StereoCamera eyes;
 };
 
 // The control panel. Materials are edited in `materials`, and handed on by apply_materials.
@@ -127,7 +134,7 @@ void draw_panel(const Scene& scene, std::vector<Material>& materials, gl::DrawPa
   ImGui::Begin("palpate");
   ImGui::TextWrapped(
       "Left drag: move the tip. Shift+wheel or W/S: tip depth. Right drag: orbit. Wheel: zoom. "
-      "R: reset tip. P: screenshot. Esc: quit.");
+      "R: reset tip. P: screenshot. Esc: quit. Arrows, PgUp/PgDn: move the head (stereo).");
   if (ImGui::CollapsingHeader("Rates", ImGuiTreeNodeFlags_DefaultOpen)) {
     ImGui::Text("graphics %.1f fps (%.2f ms)", ImGui::GetIO().Framerate, 1000.0f / ImGui::GetIO().Framerate);
     ImGui::Text("haptics %.1f Hz, %llu missed, tick p99 %.1f us", stats.achieved_hz,
@@ -158,6 +165,22 @@ void draw_panel(const Scene& scene, std::vector<Material>& materials, gl::DrawPa
     ImGui::SameLine();
     ImGui::Checkbox("contact point", &draw.draw_contact_points);
     ImGui::SliderFloat("probe radius mm", &draw.probe_radius_mm, 0.2f * panel.scale, 5.0f * panel.scale);
+  }
+  if (ImGui::CollapsingHeader("Stereo")) {
+    ImGui::Combo("output", &panel.stereo,
+                 panel.quad_buffers
+                     ? "mono\0side by side\0top and bottom\0anaglyph (red-cyan)\0quad buffers\0"
+                     : "mono\0side by side\0top and bottom\0anaglyph (red-cyan)\0");
+    ImGui::Combo("mirror", &panel.mirror, "none\0left-right\0upside down\0");
+    ImGui::SliderFloat("eye separation mm", &panel.eyes.eye_separation_mm, 0.0f, 100.0f);
+    ImGui::Checkbox("zero parallax at the target", &panel.convergence_follows_camera);
+    if (!panel.convergence_follows_camera) {
+      ImGui::SliderFloat("convergence mm", &panel.eyes.convergence_mm, 10.0f * panel.scale,
+                         2000.0f * panel.scale);
+    }
+    ImGui::Text("head %.0f %.0f %.0f mm", panel.eyes.head_mm.x, panel.eyes.head_mm.y, panel.eyes.head_mm.z);
+    ImGui::SameLine();
+    if (ImGui::Button("Reset head")) panel.eyes.head_mm = glm::vec3(0.0f);
   }
   if (ImGui::CollapsingHeader("Objects", ImGuiTreeNodeFlags_DefaultOpen)) {
     for (std::size_t i = 0; i < scene.objects.size(); ++i) {
@@ -196,7 +219,8 @@ void draw_panel(const Scene& scene, std::vector<Material>& materials, gl::DrawPa
 
 int run_view(const ViewOptions& options) {
   Scene scene = scene_for_option(options.scene);
-  GlSession session = open_gl(false, options.width, options.height, "palpate view");
+  const bool quad_buffers_wanted = stereo_mode(options.stereo) == gl::StereoMode::quad_buffer;
+  GlSession session = open_gl(false, options.width, options.height, "palpate view", quad_buffers_wanted);
   if (!session.window)
     throw Error("palpate view needs a display ($DISPLAY): run it under X or Xvfb, or use `palpate demo`");
   gl::Window& window = *session.window;
@@ -242,6 +266,16 @@ int run_view(const ViewOptions& options) {
   draw.probe_radius_mm *= scale;
   Panel panel;
   panel.scale = scale;
+  panel.quad_buffers = session.stereo_buffers;
+  panel.stereo = int(stereo_mode(options.stereo));
+  if (quad_buffers_wanted && !session.stereo_buffers) {
+    std::fprintf(stderr, "palpate view: showing side-by-side instead of quad-buffered stereo\n");
+    panel.stereo = int(gl::StereoMode::side_by_side);
+  }
+  panel.mirror = int(mirror(options.stereo));
+  panel.eyes = stereo_camera(options.stereo, camera);
+  panel.convergence_follows_camera = options.stereo.convergence_mm <= 0.0f;
+  gl::StereoCompositor compositor;
   bool orbiting = false, dragging_tip = false;
   glm::dvec2 last_cursor{0.0};
   int frame = 0;
@@ -282,6 +316,12 @@ int run_view(const ViewOptions& options) {
       const float step = 40.0f * scale * io.DeltaTime;  // 40 mm/s in the default scene
       if (glfwGetKey(native, GLFW_KEY_W) == GLFW_PRESS) tip += facing * step;
       if (glfwGetKey(native, GLFW_KEY_S) == GLFW_PRESS) tip -= facing * step;
+      // The head, from the keyboard until a tracker is wired in: 100 mm/s in the default scene.
+      const float head_step = 100.0f * scale * io.DeltaTime;
+      const auto held = [&](int key) { return glfwGetKey(native, key) == GLFW_PRESS ? head_step : 0.0f; };
+      panel.eyes.head_mm +=
+          glm::vec3(held(GLFW_KEY_RIGHT) - held(GLFW_KEY_LEFT), held(GLFW_KEY_UP) - held(GLFW_KEY_DOWN),
+                    held(GLFW_KEY_PAGE_DOWN) - held(GLFW_KEY_PAGE_UP));
       reset_tip = ImGui::IsKeyPressed(GLFW_KEY_R);  // ImGui 1.86 indexes keys by GLFW code
       screenshot = ImGui::IsKeyPressed(GLFW_KEY_P);
       if (ImGui::IsKeyPressed(GLFW_KEY_ESCAPE)) window.request_close();
@@ -300,8 +340,14 @@ int run_view(const ViewOptions& options) {
       tip = start_tip;
       device.set_target(tip);
     }
-    const glm::mat4 view = camera.view(), projection = camera.projection(size.x / size.y);
-    if (latest.contact.in_contact()) {
+    if (panel.convergence_follows_camera) panel.eyes.convergence_mm = camera.distance_mm;
+    // The head's own view (the mono camera while the head is home).
+    const EyeView head = panel.eyes.eye(Eye::centre, mono_camera(camera, size.x / size.y));
+    const glm::mat4 view = head.view, projection = head.projection;
+    // The arrow is drawn over the picture at the head's view: not over stereo or mirrored pictures.
+    const bool composited_output =
+        panel.stereo != int(gl::StereoMode::mono) || panel.mirror != int(gl::Mirror::none);
+    if (latest.contact.in_contact() && !composited_output) {
       draw_force_arrow(projection * view, size, latest.contact.hip_mm, latest.force_n,
                        latest.contact.depth_mm, 15.0f * scale);
     }
@@ -314,7 +360,18 @@ int run_view(const ViewOptions& options) {
     glViewport(0, 0, width, height);
     glClearColor(0.08f, 0.09f, 0.11f, 1.0f);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    renderer.draw(view, projection, std::span<const Contact>(&latest.contact, 1), draw);
+    const auto stereo = gl::StereoMode(panel.stereo);
+    const auto flip = gl::Mirror(panel.mirror);
+    if (composited_output) {
+      compositor.render(stereo, flip, width, height, [&](const gl::EyeTarget& target) {
+        glClearColor(0.08f, 0.09f, 0.11f, 1.0f);
+        glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+        const EyeView eye = panel.eyes.eye(target.eye, mono_camera(camera, target.aspect));
+        renderer.draw(eye.view, eye.projection, std::span<const Contact>(&latest.contact, 1), draw);
+      });
+    } else {
+      renderer.draw(view, projection, std::span<const Contact>(&latest.contact, 1), draw);
+    }
     ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
     ++frame;
 
@@ -356,6 +413,7 @@ void add_view_command(CLI::App& app) {
   view->add_option("--press-depth", options->press_depth_mm,
                    "Start with the tip this many mm under the surface at the centre")
       ->check(CLI::Range(0.0, 30.0));
+  add_stereo_options(view, options->stereo);
   on_selected(view, [options] { return run_view(*options); });
 }
 

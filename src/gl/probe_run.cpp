@@ -5,8 +5,10 @@
 #include <algorithm>
 #include <chrono>
 #include <glm/geometric.hpp>
+#include <optional>
 
 #include "palpate/core/bvh.hpp"
+#include "palpate/core/error.hpp"
 #include "palpate/haptics/haptic_loop.hpp"
 #include "palpate/haptics/scripted_device.hpp"
 
@@ -24,6 +26,10 @@ double seconds_since(Clock::time_point start) {
 ProbeRunResult run_probe_script(const Scene& scene, const OrbitCamera& camera, const ProbeScript& script,
                                 Renderer& renderer, const Framebuffer& framebuffer,
                                 const ProbeRunParams& params) {
+  if (params.stereo == StereoMode::quad_buffer) {
+    throw Error(
+        "run_probe_script draws offscreen frames: quad-buffered stereo needs a window's back buffers");
+  }
   ProbeRunResult result;
   for (const SceneObject& object : scene.objects) {
     if (!object.material.visible) continue;
@@ -38,6 +44,8 @@ ProbeRunResult run_probe_script(const Scene& scene, const OrbitCamera& camera, c
   HapticLoop loop(device, scene, bvh, loop_params);
   renderer.upload(scene);
 
+  std::optional<StereoCompositor> compositor;
+  if (params.stereo != StereoMode::mono || params.mirror != Mirror::none) compositor.emplace();
   const float aspect = float(framebuffer.width()) / float(framebuffer.height());
   const glm::mat4 view = camera.view(), projection = camera.projection(aspect);
   const double end_s = params.max_seconds > 0.0 ? params.max_seconds : script.path.end_s() + 0.1;
@@ -59,9 +67,21 @@ ProbeRunResult run_probe_script(const Scene& scene, const OrbitCamera& camera, c
     result.max_force_n = std::max(result.max_force_n, double(glm::length(tick.force_n)));
     const Clock::time_point frame_start = Clock::now();
     framebuffer.bind();
-    glClearColor(0.08f, 0.09f, 0.11f, 1.0f);
-    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-    renderer.draw(view, projection, std::span<const Contact>(&tick.contact, 1), params.draw);
+    const auto draw = [&](const glm::mat4& eye_view, const glm::mat4& eye_projection) {
+      glClearColor(0.08f, 0.09f, 0.11f, 1.0f);
+      glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+      renderer.draw(eye_view, eye_projection, std::span<const Contact>(&tick.contact, 1), params.draw);
+    };
+    if (compositor) {
+      compositor->render(params.stereo, params.mirror, framebuffer.width(), framebuffer.height(),
+                         [&](const EyeTarget& target) {
+                           const EyeView eye =
+                               params.stereo_camera.eye(target.eye, mono_camera(camera, target.aspect));
+                           draw(eye.view, eye.projection);
+                         });
+    } else {
+      draw(view, projection);
+    }
     glFinish();  // llvmpipe has no trustworthy timer queries: a frame is done when glFinish returns
     const double frame_s = seconds_since(frame_start);
     drawing_s += frame_s;

@@ -37,12 +37,15 @@ Window::Window(const WindowParams& options) : state_(std::make_unique<State>()) 
   glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
   glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
   glfwWindowHint(GLFW_SAMPLES, options.samples);
+  glfwWindowHint(GLFW_STEREO, options.stereo ? GLFW_TRUE : GLFW_FALSE);
   state_->window = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
   if (!state_->window) {
     const std::string why = glfw_error();
     if (glfw_windows == 0) glfwTerminate();
     throw Error("cannot open a " + std::to_string(options.width) + "x" + std::to_string(options.height) +
-                " window with an OpenGL 4.5 core context: " + why);
+                " window with an OpenGL 4.5 core context" +
+                (options.stereo ? std::string(" and left and right back buffers (stereo)") : std::string()) +
+                ": " + why);
   }
   ++glfw_windows;
   glfwMakeContextCurrent(state_->window);

@@ -73,7 +73,7 @@ TEST(BenchCommand, RenderAtItsSmallestComparesEveryVariant) {
   const auto json = test::scratch_dir("bench_render") / "render.json";
   const nlohmann::json report = run_bench("render --quick --seconds 0.3 --width 160 --height 128", json);
   EXPECT_EQ(report["width"], 160);
-  ASSERT_EQ(report["rows"].size(), 12u) << "3 meshes x 4 variants";
+  ASSERT_EQ(report["rows"].size(), 18u) << "3 meshes x 6 variants (two of them stereo)";
   for (const auto& row : report["rows"]) {
     EXPECT_GT(row["fps"].get<double>(), 0.0);
     EXPECT_GT(row["frames"].get<int>(), 0);

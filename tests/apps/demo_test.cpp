@@ -181,5 +181,36 @@ TEST(DemoRun, ASceneWithNothingToPressSaysSoInOneLine) {
             "press\n");
 }
 
+// Top and bottom stereo: each key frame holds the left eye's picture above the right eye's, each
+// squeezed to half height: the same head in both, seen from 63 mm apart.
+TEST(DemoRun, TopBottomStereoFramesHoldBothEyes) {
+  const auto out = test::scratch_dir("demo_stereo");
+  const auto result =
+      test::run_command(cli +
+                        " demo --headless --scene phantom --frames 6 --width 320 --height 256 "
+                        "--stereo top-bottom --out " +
+                        out.string());
+  ASSERT_EQ(result.exit_status, 0) << result.both();
+  EXPECT_NE(result.out.find("stereo top-bottom, mirror none, eyes 63 mm apart"), std::string::npos)
+      << result.out;
+  int width = 0, height = 0, channels = 0;
+  stbi_uc* pixels = stbi_load((out / "keyframe_0.png").c_str(), &width, &height, &channels, 3);
+  ASSERT_NE(pixels, nullptr);
+  int lit[2] = {0, 0}, differ = 0;
+  for (int y = 0; y < height / 2; ++y) {
+    for (int x = 0; x < width; ++x) {
+      const stbi_uc* top = &pixels[3 * (y * width + x)];
+      const stbi_uc* bottom = &pixels[3 * ((y + height / 2) * width + x)];
+      lit[0] += top[0] > 60;
+      lit[1] += bottom[0] > 60;
+      differ += std::abs(top[0] - bottom[0]) > 30;
+    }
+  }
+  stbi_image_free(pixels);
+  EXPECT_GT(lit[0], width * height / 20);
+  EXPECT_NEAR(lit[0], lit[1], 0.1 * lit[0]) << "the two eyes see different amounts of the head";
+  EXPECT_GT(differ, 20) << "the two eyes see the same picture: no parallax";
+}
+
 }  // namespace
 }  // namespace palpate

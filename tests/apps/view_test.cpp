@@ -57,5 +57,38 @@ TEST(ViewCommand, RunsUnderXvfbAndTakesAScreenshot) {
   EXPECT_NEAR(force, 0.8f * depth, 0.011f);
 }
 
+// Asked for quad-buffered stereo where the driver (Mesa) has no stereo visual: it says so and shows
+// side by side instead, here mirrored left to right; the head is in the right half (the left eye's).
+TEST(ViewCommand, QuadBufferedStereoFallsBackToSideBySideAndSaysSo) {
+  if (test::run_command("command -v xvfb-run").exit_status != 0) GTEST_SKIP() << "xvfb-run is not installed";
+  const auto dir = test::scratch_dir("view_stereo");
+  const auto shot = dir / "view.png";
+  const auto run = test::run_command(
+      "cd " + dir.string() +
+      " && ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" xvfb-run -a -s '-screen 0 1024x768x24' " +
+      std::string(PALPATE_CLI) +
+      " view --scene phantom --width 800 --height 600 --frames 5 --stereo quad-buffer --mirror horizontal "
+      "--screenshot " +
+      shot.string());
+  ASSERT_EQ(run.exit_status, 0) << run.both();
+  EXPECT_NE(run.err.find("quad-buffered stereo: the driver offers no stereo visual"), std::string::npos)
+      << run.err;
+  EXPECT_NE(run.err.find("palpate view: showing side-by-side instead of quad-buffered stereo"),
+            std::string::npos)
+      << run.err;
+  int width = 0, height = 0, channels = 0;
+  stbi_uc* pixels = stbi_load(shot.c_str(), &width, &height, &channels, 3);
+  ASSERT_NE(pixels, nullptr) << run.both();
+  int skin = 0;
+  for (int y = 0; y < height; ++y) {
+    for (int x = width / 2; x < width; ++x) {
+      const stbi_uc* p = &pixels[3 * (y * width + x)];
+      skin += p[0] > 60 && p[0] > p[1] && p[1] > p[2];
+    }
+  }
+  stbi_image_free(pixels);
+  EXPECT_GT(skin, width * height / 20) << "no head in the right half";
+}
+
 }  // namespace
 }  // namespace palpate

@@ -17,6 +17,7 @@
 #include "palpate/core/scene.hpp"
 #include "palpate/gl/framebuffer.hpp"
 #include "palpate/gl/renderer.hpp"
+#include "palpate/gl/stereo_compositor.hpp"
 #include "palpate/gl/window.hpp"
 #include "palpate/haptics/haptic_pipeline.hpp"
 #include "palpate/haptics/loop_statistics.hpp"
@@ -40,6 +41,11 @@ struct ProbeRunParams {
   int max_captures = -1;      // stop after the capture numbered this -1; -1: no limit
   double max_seconds = -1.0;  // stop after this much run time; -1: the script's length
   Window* window = nullptr;   // also shown there when given
+  // Stereo: each frame drawn once per eye and combined (mono with no mirror: drawn straight into the
+  // framebuffer). The frames are offscreen, so quad_buffer is refused (palpate::Error).
+  StereoMode stereo = StereoMode::mono;
+  Mirror mirror = Mirror::none;
+  StereoCamera stereo_camera;
   std::function<void(const CapturedFrame&)> on_capture;
   std::function<void(const std::string&)> on_log;  // the haptic loop's notices (see HapticLoopParams)
 };

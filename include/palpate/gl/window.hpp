@@ -12,7 +12,8 @@ struct WindowParams {
   int height = 1024;
   std::string title = "palpate";
   bool vsync = true;
-  int samples = 4;  // multisampling of the default framebuffer; 0 for none
+  int samples = 4;      // multisampling of the default framebuffer; 0 for none
+  bool stereo = false;  // left and right back buffers (quad-buffered stereo); throws where none is offered
 };
 
 class Window {
