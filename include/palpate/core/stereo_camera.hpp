@@ -10,6 +10,7 @@
 // y up, z toward the viewer, mm), so leaning right shows more of an object's right side while what lies
 // in the screen plane stays put.
 //
+// Lengths are in the view's world units (palpate's are mm; an application in metres gives metres).
 // Any host camera works: give its view matrix, vertical field of view, aspect and clip planes. Pure
 // math (no GL): an application on any OpenGL draws each eye with these matrices into its own viewport
 // or back buffer; gl::StereoCompositor does the combining for palpate's own windows.
