@@ -229,7 +229,12 @@ TEST(Stereo, LeavesTheCallersStateAsFoundAndRefusesQuadBuffersWithoutThem) {
   glEnable(GL_SCISSOR_TEST);
   glEnable(GL_DEPTH_TEST);
   glColorMask(GL_TRUE, GL_FALSE, GL_TRUE, GL_TRUE);
+  GLuint host_textures[2] = {};
+  glGenTextures(2, host_textures);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, host_textures[0]);
   glActiveTexture(GL_TEXTURE1);
+  glBindTexture(GL_TEXTURE_2D, host_textures[1]);
   StereoCompositor compositor;
   compositor.render(StereoMode::anaglyph, Mirror::vertical, 64, 48, [](const EyeTarget&) {});
   GLint framebuffer = 0, viewport[4] = {}, active = 0;
@@ -245,6 +250,12 @@ TEST(Stereo, LeavesTheCallersStateAsFoundAndRefusesQuadBuffersWithoutThem) {
   EXPECT_TRUE(glIsEnabled(GL_DEPTH_TEST));
   EXPECT_EQ(mask[1], GL_FALSE);
   EXPECT_EQ(active, GL_TEXTURE1);
+  for (int unit = 0; unit < 2; ++unit) {
+    GLint texture = 0;
+    glActiveTexture(GLenum(GL_TEXTURE0 + unit));
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &texture);
+    EXPECT_EQ(GLuint(texture), host_textures[unit]) << "texture unit " << unit;
+  }
   EXPECT_FALSE(StereoCompositor::stereo_buffers_available());
   try {
     compositor.render(StereoMode::quad_buffer, Mirror::none, 64, 48, [](const EyeTarget&) {});
@@ -256,6 +267,7 @@ TEST(Stereo, LeavesTheCallersStateAsFoundAndRefusesQuadBuffersWithoutThem) {
   glDisable(GL_DEPTH_TEST);
   glColorMask(GL_TRUE, GL_TRUE, GL_TRUE, GL_TRUE);
   glActiveTexture(GL_TEXTURE0);
+  glDeleteTextures(2, host_textures);
   EXPECT_EQ(glGetError(), GLenum(GL_NO_ERROR));
 }
 
