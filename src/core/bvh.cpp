@@ -99,6 +99,11 @@ std::size_t Bvh::memory_bytes() const noexcept {
          objects_.capacity() * sizeof(ObjectRange);
 }
 
+std::array<std::span<const std::byte>, 3> Bvh::memory() const noexcept {
+  return {std::as_bytes(std::span(nodes_)), std::as_bytes(std::span(triangles_)),
+          std::as_bytes(std::span(objects_))};
+}
+
 Bounds Bvh::bounds() const noexcept {
   if (nodes_.empty()) return {};
   return {nodes_[0].min, nodes_[0].max};

@@ -2,9 +2,11 @@
 
 #include <pthread.h>
 #include <sched.h>
+#include <sys/mman.h>
 #include <sys/prctl.h>
 
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstring>
 #include <string>
@@ -20,6 +22,17 @@ double checked_rate(double rate_hz) {
     throw Error("haptic loop: rate must be in [1, 100000] Hz, got " + std::to_string(rate_hz));
   }
   return rate_hz;
+}
+
+// The part of the haptic thread's stack that is locked and touched before the first tick: far more
+// than a tick uses (the BVH queries' stacks are under 2 KB).
+constexpr std::size_t locked_stack_bytes = 64 * 1024;
+
+// Locks and touches the stack below the caller's frame; false when the limit refuses.
+[[gnu::noinline]] bool lock_stack() noexcept {
+  volatile unsigned char stack[locked_stack_bytes];
+  for (std::size_t i = 0; i < locked_stack_bytes; i += 4096) stack[i] = 0;
+  return mlock(const_cast<unsigned char*>(stack), locked_stack_bytes) == 0;
 }
 
 }  // namespace
@@ -106,7 +119,8 @@ void HapticLoop::run_period() noexcept {
 }
 
 void HapticLoop::thread_main() noexcept {
-  prctl(PR_SET_TIMERSLACK, 1UL);  // wake from clock_nanosleep on time, not up to 50 us late
+  prctl(PR_SET_TIMERSLACK, 1UL);          // wake from clock_nanosleep on time, not up to 50 us late
+  if (params_.lock_memory) lock_stack();  // a refusal was already reported for the BVH
   while (!stop_requested_.load(std::memory_order_relaxed)) run_period();
 }
 
@@ -115,6 +129,7 @@ void HapticLoop::start() {
   stop_requested_.store(false, std::memory_order_relaxed);
   steal_at_start_ms_.store(host_steal_ms().value_or(-1.0), std::memory_order_relaxed);
   begin_run();  // here, not on the thread: run_time_s() is valid as soon as start() returns
+  if (params_.lock_memory) lock_bvh();
   thread_ = std::thread([this] { thread_main(); });
   bool granted = false;
   if (params_.realtime_priority) {
@@ -146,6 +161,34 @@ void HapticLoop::stop() noexcept {
   if (!running()) return;
   stop_requested_.store(true, std::memory_order_relaxed);
   thread_.join();
+  if (locked_bytes_ > 0) {
+    for (const std::span<const std::byte> range : bvh_.memory())
+      if (!range.empty()) munlock(range.data(), range.size());
+    locked_bytes_ = 0;
+  }
+}
+
+// mlock also faults the pages in: the first tick after start() finds every node and triangle mapped.
+void HapticLoop::lock_bvh() {
+  std::size_t locked = 0;
+  for (const std::span<const std::byte> range : bvh_.memory()) {
+    if (range.empty()) continue;
+    if (mlock(range.data(), range.size()) != 0) {
+      const int error = errno;
+      for (const std::span<const std::byte> done : bvh_.memory()) {
+        if (done.data() == range.data()) break;
+        if (!done.empty()) munlock(done.data(), done.size());
+      }
+      if (params_.on_log) {
+        params_.on_log("haptic loop: could not lock the BVH's " + std::to_string(bvh_.memory_bytes() >> 20) +
+                       " MiB in memory (" + std::strerror(error) +
+                       "; see ulimit -l); a tick may wait for a page");
+      }
+      return;
+    }
+    locked += range.size();
+  }
+  locked_bytes_ = locked;
 }
 
 void HapticLoop::run_ticks(std::uint64_t count) {

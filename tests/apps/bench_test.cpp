@@ -46,6 +46,14 @@ TEST(BenchCommand, HapticsAtItsSmallestReportsCleanCountsAndARate) {
     EXPECT_GT(row["triangles"].get<int>(), 0) << what;
     EXPECT_GT(row["ticks"].get<int>(), 0) << what;
     expect_ordered(row["tick_us"], what);
+    EXPECT_GT(row["tick_mean_us"].get<double>(), 0.0) << what;
+    EXPECT_LE(row["tick_mean_us"].get<double>(), row["tick_us"]["max"].get<double>()) << what;
+    const auto& host = row["host_interruptions"];
+    EXPECT_GE(host["per_s_over_5us"].get<double>(), host["per_s_over_20us"].get<double>()) << what;
+    EXPECT_GE(host["lost_us_per_s"].get<double>(), 5.0 * host["per_s_over_5us"].get<double>()) << what;
+    EXPECT_NEAR(row["host_hit_share"].get<double>(),
+                host["per_s_over_5us"].get<double>() * row["tick_mean_us"].get<double>() * 1e-6, 1e-12)
+        << what;
     if (row["state"] != "contact") continue;
     ++contact_rows;
     const auto& checks = row["checks"];

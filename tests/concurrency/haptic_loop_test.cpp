@@ -7,8 +7,10 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <fstream>
 #include <glm/geometric.hpp>
 #include <optional>
+#include <string>
 #include <thread>
 #include <vector>
 
@@ -109,6 +111,56 @@ TEST(HapticLoopThreadTest, StartsStopsAndRestarts) {
   ASSERT_TRUE(eventually([&] { return loop.statistics().ticks >= ticks_after_stop + 20; }));
   EXPECT_GT(loop.latest().contact.tick, ticks_after_stop) << "tick numbers go on after a restart";
 }  // the destructor stops the running loop
+
+// The kernel's count of this process's locked memory (VmLck in /proc/self/status), bytes.
+std::size_t locked_now() {
+  std::ifstream status("/proc/self/status");
+  for (std::string line; std::getline(status, line);) {
+    if (line.rfind("VmLck:", 0) == 0) return std::stoul(line.substr(6)) * 1024;
+  }
+  return 0;
+}
+
+// While it runs, the loop keeps the BVH's pages locked (where the limit allows: else it says so) and
+// gives them back when it stops; with lock_memory off it locks nothing.
+TEST(HapticLoopThreadTest, LocksTheBvhWhileRunningOrSaysWhyNot) {
+  Scene scene;
+  scene.objects.push_back(
+      {"sphere", make_bumpy_sphere(50.0f, 1.5f, 100000), glm::mat4(1.0f), Material{}, {}});
+  const Bvh bvh = Bvh::build(scene);
+  std::size_t bvh_bytes = 0;
+  for (const auto range : bvh.memory()) bvh_bytes += range.size();
+  ASSERT_GT(bvh_bytes, std::size_t(4) << 20);
+  ScriptedDevice device(press_on_top_face(), true);
+  std::vector<std::string> lines;
+  HapticLoopParams params;
+  params.realtime_priority = false;
+  params.on_log = [&](const std::string& line) { lines.push_back(line); };
+  const std::size_t before = locked_now();
+  {
+    HapticLoop loop(device, scene, bvh, params);
+    loop.start();
+    ASSERT_TRUE(eventually([&] { return loop.statistics().ticks >= 5; }));
+    const std::size_t during = locked_now();
+    if (loop.locked_bytes() > 0) {
+      EXPECT_EQ(loop.locked_bytes(), bvh_bytes);
+      EXPECT_GE(during - before, bvh_bytes) << "VmLck did not grow by the BVH";
+      EXPECT_TRUE(lines.empty());
+    } else {
+      ASSERT_EQ(lines.size(), 1u);
+      EXPECT_NE(lines[0].find("could not lock the BVH"), std::string::npos) << lines[0];
+    }
+    loop.stop();
+    EXPECT_EQ(loop.locked_bytes(), 0u);
+    EXPECT_LT(locked_now(), before + bvh_bytes) << "the BVH stayed locked after stop()";
+  }
+  params.lock_memory = false;
+  HapticLoop unlocked(device, scene, bvh, params);
+  unlocked.start();
+  ASSERT_TRUE(eventually([&] { return unlocked.statistics().ticks >= 5; }));
+  EXPECT_EQ(unlocked.locked_bytes(), 0u);
+  EXPECT_LT(locked_now(), before + bvh_bytes);
+}
 
 TEST(HapticLoopThreadTest, ContactsAdvanceAndStayWholeWhileReadersPoll) {
   const Scene scene = cube_scene();

@@ -84,6 +84,8 @@ class Bvh {
   std::size_t node_count() const noexcept { return nodes_.size(); }
   // Bytes held by the nodes, the triangles and the object table.
   std::size_t memory_bytes() const noexcept;
+  // Those arrays, for a caller that locks them in memory (HapticLoop does).
+  std::array<std::span<const std::byte>, 3> memory() const noexcept;
   // The padded bounds of everything; zero for an empty tree.
   Bounds bounds() const noexcept;
 

@@ -14,7 +14,10 @@
 // allocated on its thread, and the force follows the new material from that tick on.
 //
 // SCHED_FIFO is requested when the thread starts; where it is not permitted, start() says so once
-// through HapticLoopParams::on_log and the loop runs at normal priority. Inside the loop nothing
+// through HapticLoopParams::on_log and the loop runs at normal priority. The BVH's pages and the
+// thread's stack are locked in memory (mlock) and touched before the first tick, so that no tick waits
+// for a page to be read back from swap or first mapped; where the limit on locked memory refuses,
+// start() says so the same way and the loop runs unlocked. Inside the loop nothing
 // allocates, locks, logs or does I/O; tests/concurrency/haptic_loop_test.cpp counts operator new calls
 // on the loop thread.
 #include <atomic>
@@ -43,11 +46,12 @@ struct HapticLoopParams {
   DeviceTransform device_to_scene;  // device frame to scene (workspace scaling + rigid)
   ProxyParams proxy;
   bool realtime_priority = true;          // ask for SCHED_FIFO
+  bool lock_memory = true;                // mlock the BVH and the thread's stack (see above)
   int fifo_priority = 80;                 // 1..99 when SCHED_FIFO is granted
   double spin_us = 100.0;                 // spin this long before each deadline (at most half a period)
   std::size_t statistics_window = 32768;  // ticks behind the percentiles
-  // Receives what start() has to say (SCHED_FIFO refused), on the thread that calls start(). Empty:
-  // discarded, never printed.
+  // Receives what start() has to say (SCHED_FIFO or locking refused), on the thread that calls start().
+  // Empty: discarded, never printed.
   std::function<void(const std::string&)> on_log;
 };
 
@@ -71,6 +75,8 @@ class HapticLoop {
   bool running() const noexcept { return thread_.joinable(); }
   // Whether SCHED_FIFO was granted at the last start().
   bool realtime() const noexcept { return realtime_.load(std::memory_order_relaxed); }
+  // Bytes of the BVH locked in memory by the last start(); 0 when refused, off, or stopped.
+  std::size_t locked_bytes() const noexcept { return locked_bytes_; }
 
   // Runs `count` ticks on the calling thread as a run of its own (device time from 0, a fresh
   // schedule), with the same code and statistics as the thread: for fake clocks and tools.
@@ -129,6 +135,8 @@ class HapticLoop {
 
   std::thread thread_;
   std::atomic<bool> stop_requested_{false};
+  void lock_bvh();
+  std::size_t locked_bytes_ = 0;  // of the BVH, locked by the last start() (unlocked by stop())
   std::atomic<bool> realtime_{false};
 };
 
