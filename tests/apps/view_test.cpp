@@ -4,6 +4,8 @@
 #include <stb/stb_image.h>
 
 #include <cstdio>
+#include <filesystem>
+#include <string>
 
 #include "run_command.hpp"
 #include "test_paths.hpp"
@@ -11,18 +13,25 @@
 namespace palpate {
 namespace {
 
-TEST(ViewCommand, RunsUnderXvfbAndTakesAScreenshot) {
-  if (test::run_command("command -v xvfb-run").exit_status != 0) GTEST_SKIP() << "xvfb-run is not installed";
-  const auto dir = test::scratch_dir("view_command");
-  const auto shot = dir / "view.png";
+// `palpate view --scene phantom --width 800 --height 600 ARGUMENTS --screenshot` in a scratch folder
+// under Xvfb; `screenshot` is where the picture goes.
+test::CommandResult run_view(const std::string& folder, const std::string& arguments,
+                             std::filesystem::path& screenshot) {
+  const auto dir = test::scratch_dir(folder);
+  screenshot = dir / "view.png";
   // In sanitizer builds: Mesa's GLX driver is unloaded at exit, so LeakSanitizer can neither name nor
   // suppress what it keeps; leaks of palpate's own code are checked by every other test.
-  const auto run = test::run_command(
-      "cd " + dir.string() +
-      " && ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" xvfb-run -a -s '-screen 0 1024x768x24' " +
-      std::string(PALPATE_CLI) +
-      " view --scene phantom --width 800 --height 600 --frames 15 --press-depth 4 --screenshot " +
-      shot.string());
+  return test::run_command("cd " + dir.string() +
+                           " && ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" xvfb-run -a -s '-screen 0 "
+                           "1024x768x24' " +
+                           std::string(PALPATE_CLI) + " view --scene phantom --width 800 --height 600 " +
+                           arguments + " --screenshot " + screenshot.string());
+}
+
+TEST(ViewCommand, RunsUnderXvfbAndTakesAScreenshot) {
+  if (test::run_command("command -v xvfb-run").exit_status != 0) GTEST_SKIP() << "xvfb-run is not installed";
+  std::filesystem::path shot;
+  const auto run = run_view("view_command", "--frames 15 --press-depth 4", shot);
   ASSERT_EQ(run.exit_status, 0) << run.both();
   int width = 0, height = 0, channels = 0;
   stbi_uc* pixels = stbi_load(shot.c_str(), &width, &height, &channels, 3);
@@ -61,15 +70,8 @@ TEST(ViewCommand, RunsUnderXvfbAndTakesAScreenshot) {
 // side by side instead, here mirrored left to right; the head is in the right half (the left eye's).
 TEST(ViewCommand, QuadBufferedStereoFallsBackToSideBySideAndSaysSo) {
   if (test::run_command("command -v xvfb-run").exit_status != 0) GTEST_SKIP() << "xvfb-run is not installed";
-  const auto dir = test::scratch_dir("view_stereo");
-  const auto shot = dir / "view.png";
-  const auto run = test::run_command(
-      "cd " + dir.string() +
-      " && ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" xvfb-run -a -s '-screen 0 1024x768x24' " +
-      std::string(PALPATE_CLI) +
-      " view --scene phantom --width 800 --height 600 --frames 5 --stereo quad-buffer --mirror horizontal "
-      "--screenshot " +
-      shot.string());
+  std::filesystem::path shot;
+  const auto run = run_view("view_stereo", "--frames 5 --stereo quad-buffer --mirror horizontal", shot);
   ASSERT_EQ(run.exit_status, 0) << run.both();
   EXPECT_NE(run.err.find("quad-buffered stereo: the driver offers no stereo visual"), std::string::npos)
       << run.err;
