@@ -112,6 +112,14 @@ TEST(HapticLoopThreadTest, StartsStopsAndRestarts) {
   EXPECT_GT(loop.latest().contact.tick, ticks_after_stop) << "tick numbers go on after a restart";
 }  // the destructor stops the running loop
 
+// The sanitizers intercept mlock and make it a no-op (their shadow memory is too large to lock), so
+// the kernel's count can only be checked without them.
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+constexpr bool mlock_is_real = false;
+#else
+constexpr bool mlock_is_real = true;
+#endif
+
 // The kernel's count of this process's locked memory (VmLck in /proc/self/status), bytes.
 std::size_t locked_now() {
   std::ifstream status("/proc/self/status");
@@ -144,7 +152,9 @@ TEST(HapticLoopThreadTest, LocksTheBvhWhileRunningOrSaysWhyNot) {
     const std::size_t during = locked_now();
     if (loop.locked_bytes() > 0) {
       EXPECT_EQ(loop.locked_bytes(), bvh_bytes);
-      EXPECT_GE(during - before, bvh_bytes) << "VmLck did not grow by the BVH";
+      if (mlock_is_real) {
+        EXPECT_GE(during - before, bvh_bytes) << "VmLck did not grow by the BVH";
+      }
       EXPECT_TRUE(lines.empty());
     } else {
       ASSERT_EQ(lines.size(), 1u);
