@@ -99,7 +99,11 @@ class SavedState {
 
 }  // namespace
 
-StereoCompositor::StereoCompositor() : program_("palpate stereo compositor", vertex_source, fragment_source) {
+StereoCompositor::StereoCompositor()
+    : program_("palpate stereo compositor", vertex_source, fragment_source),
+      uniforms_{program_.uniform("left_eye"),    program_.uniform("right_eye"),   program_.uniform("mode"),
+                program_.uniform("mirror"),      program_.uniform("split"),       program_.uniform("size"),
+                program_.uniform("dubois_left"), program_.uniform("dubois_right")} {
   glGenVertexArrays(1, &vertex_array_);  // a core profile draws nothing without one
 }
 
@@ -186,14 +190,14 @@ void StereoCompositor::render(StereoMode mode, Mirror mirror, int width, int hei
     glActiveTexture(GLenum(GL_TEXTURE0 + unit));
     glBindTexture(GL_TEXTURE_2D, targets_[std::size_t(stereo ? unit : 0)].color);
   }
-  glUniform1i(program_.uniform("left_eye"), 0);
-  glUniform1i(program_.uniform("right_eye"), 1);
-  glUniform2i(program_.uniform("mirror"), mirror == Mirror::horizontal, mirror == Mirror::vertical);
-  glUniform2i(program_.uniform("split"), left_width, right_height);
-  glUniform2i(program_.uniform("size"), width, height);
-  set_rows(program_.uniform("dubois_left"), dubois_left);
-  set_rows(program_.uniform("dubois_right"), dubois_right);
-  const GLint mode_uniform = program_.uniform("mode");
+  glUniform1i(uniforms_.left_eye, 0);
+  glUniform1i(uniforms_.right_eye, 1);
+  glUniform2i(uniforms_.mirror, mirror == Mirror::horizontal, mirror == Mirror::vertical);
+  glUniform2i(uniforms_.split, left_width, right_height);
+  glUniform2i(uniforms_.size, width, height);
+  set_rows(uniforms_.dubois_left, dubois_left);
+  set_rows(uniforms_.dubois_right, dubois_right);
+  const GLint mode_uniform = uniforms_.mode;
   switch (mode) {
     case StereoMode::side_by_side:
       glUniform1i(mode_uniform, 1);

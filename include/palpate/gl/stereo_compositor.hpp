@@ -69,6 +69,9 @@ class StereoCompositor {
 
   std::array<Target, 2> targets_{};
   ShaderProgram program_;
+  struct Uniforms {  // the combining shader's uniform locations, looked up once
+    std::int32_t left_eye, right_eye, mode, mirror, split, size, dubois_left, dubois_right;
+  } uniforms_;
   std::uint32_t vertex_array_ = 0;
 };
 
