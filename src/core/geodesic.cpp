@@ -81,6 +81,8 @@ GeodesicField::GeodesicField(const Mesh& mesh) : mesh_(mesh) {
   }
 
   distance_.assign(vertices, infinity);
+  lowered_.assign(vertices, 0);
+  along_edge_.assign(vertices, 0);
   alive_.assign(vertices, 0);
   heap_position_.assign(vertices, -1);
   heap_.reserve(vertices);
@@ -100,6 +102,7 @@ void GeodesicField::compute(std::uint32_t triangle, glm::vec3 point_mm, float ra
   for (const std::uint32_t v : touched_) {
     distance_[v] = infinity;
     alive_[v] = 0;
+    lowered_[v] = 0;
     heap_position_[v] = -1;
   }
   touched_.clear();
@@ -120,13 +123,13 @@ void GeodesicField::compute(std::uint32_t triangle, glm::vec3 point_mm, float ra
   const glm::vec3 contact_normal = face_normal(triangle);
   for (int k = 0; k < 3; ++k) {
     const std::uint32_t corner = mesh_.indices[3 * std::size_t(triangle) + k];
-    push_or_lower(corner, glm::distance(mesh_.positions_mm[corner], point_mm));
+    push_or_lower(corner, glm::distance(mesh_.positions_mm[corner], point_mm), false);
     for (std::uint32_t i = first_triangle_[corner]; i < first_triangle_[corner + 1]; ++i) {
       const std::size_t t = vertex_triangles_[i];
       if (glm::dot(face_normal(t), contact_normal) < 0.906f) continue;  // cos 25 degrees
       for (int j = 0; j < 3; ++j) {
         const std::uint32_t v = mesh_.indices[3 * t + j];
-        push_or_lower(v, glm::distance(mesh_.positions_mm[v], point_mm));
+        push_or_lower(v, glm::distance(mesh_.positions_mm[v], point_mm), false);
       }
     }
   }
@@ -143,6 +146,38 @@ void GeodesicField::compute(std::uint32_t triangle, glm::vec3 point_mm, float ra
       }
     }
   }
+  correct_along_edge_arrivals();
+}
+
+// The march fixes a vertex from the triangles whose other corners were fixed before it. Where the front
+// reaches a vertex through a triangle with a corner fixed after it (beyond an obtuse corner, across a
+// long thin triangle), the march takes a path along an edge instead, up to several percent long, and
+// the error spreads onward. So each vertex that came along an edge is updated again, in the order they
+// were reached, from all its triangles, and so is each vertex next to one this pass lowered. One pass:
+// a second changed nothing measured. On a jittered plane the mean error fell from 0.07 to 0.001 mm;
+// against CGAL's exact paths the largest weight error fell from 0.038 to 0.022 of p on the Colin27
+// brain (sigma 2 mm) and from 0.15 to 0.018 on the coarse SPM12 cortex; it costs about a tenth of the
+// march (docs/design.md).
+void GeodesicField::correct_along_edge_arrivals() {
+  for (const std::uint32_t v : reached_) {
+    const std::span<const std::uint32_t> around = triangles_around(v);
+    const auto lowered_next_to_it = [&] {
+      for (const std::uint32_t t : around) {
+        const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(t)];
+        if (lowered_[corners[0]] || lowered_[corners[1]] || lowered_[corners[2]]) return true;
+      }
+      return false;
+    };
+    if (!along_edge_[v] && !lowered_next_to_it()) continue;
+    for (const std::uint32_t t : around) {
+      const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(t)];
+      const int k = corners[0] == v ? 0 : corners[1] == v ? 1 : 2;
+      const std::uint32_t a = corners[(k + 1) % 3], b = corners[(k + 2) % 3];
+      if (!alive_[a] || !alive_[b]) continue;
+      const float d = unfolded_update(v, a, b, t);
+      if (d < distance_[v]) distance_[v] = d, lowered_[v] = 1;
+    }
+  }
 }
 
 void GeodesicField::update(std::uint32_t c, std::uint32_t triangle) {
@@ -150,11 +185,11 @@ void GeodesicField::update(std::uint32_t c, std::uint32_t triangle) {
   const int k = corners[0] == c ? 0 : corners[1] == c ? 1 : 2;
   const std::uint32_t a = corners[(k + 1) % 3], b = corners[(k + 2) % 3];
   const glm::vec3 pc = mesh_.positions_mm[c];
-  float best = infinity;
-  if (alive_[a]) best = std::min(best, distance_[a] + glm::distance(mesh_.positions_mm[a], pc));
-  if (alive_[b]) best = std::min(best, distance_[b] + glm::distance(mesh_.positions_mm[b], pc));
-  if (alive_[a] && alive_[b]) best = std::min(best, unfolded_update(c, a, b, triangle));
-  push_or_lower(c, best);
+  float along_edge = infinity;
+  if (alive_[a]) along_edge = std::min(along_edge, distance_[a] + glm::distance(mesh_.positions_mm[a], pc));
+  if (alive_[b]) along_edge = std::min(along_edge, distance_[b] + glm::distance(mesh_.positions_mm[b], pc));
+  const float through = alive_[a] && alive_[b] ? unfolded_update(c, a, b, triangle) : infinity;
+  push_or_lower(c, std::min(along_edge, through), !(through < along_edge));
 }
 
 // The triangle's own plane wave; at an obtuse corner c, Kimmel and Sethian's unfolding: the triangles
@@ -218,10 +253,11 @@ float GeodesicField::unfolded_update(std::uint32_t c, std::uint32_t a, std::uint
   return best;
 }
 
-void GeodesicField::push_or_lower(std::uint32_t vertex, float distance) {
+void GeodesicField::push_or_lower(std::uint32_t vertex, float distance, bool along_edge) {
   if (!(distance < distance_[vertex])) return;
   if (distance_[vertex] == infinity && heap_position_[vertex] < 0) touched_.push_back(vertex);
   distance_[vertex] = distance;
+  along_edge_[vertex] = along_edge;
   if (heap_position_[vertex] < 0) {
     heap_position_[vertex] = std::int32_t(heap_.size());
     heap_.push_back(vertex);

@@ -6,7 +6,8 @@
 // Fast marching on the triangles (Kimmel and Sethian, 1998): the front leaves the contact triangle's
 // three corners with their in-plane distances and crosses each triangle as a plane wave from the
 // unfolded source of its two known corners; at an obtuse corner the neighbouring triangle is unfolded
-// into the plane, so the front is not forced along edges there. Written here: no Debian library marches
+// into the plane, so the front is not forced along edges there; a vertex the front still reached along
+// an edge is updated again once its later neighbours are known. Written here: no Debian library marches
 // on a triangle mesh with a workspace reused per frame (CGAL's exact shortest paths serve as the test's
 // reference: exact, but far too slow per frame).
 #include <cstdint>
@@ -27,7 +28,8 @@ class GeodesicField {
   // passes `radius_mm`. No allocation. Throws palpate::Error for a triangle out of range.
   void compute(std::uint32_t triangle, glm::vec3 point_mm, float radius_mm);
 
-  // The vertices within the radius, nearest first, from the last compute().
+  // The vertices within the radius, from the last compute(), in the order the front reached them
+  // (nearest first but for the vertices corrected afterwards, lowered by a few percent).
   std::span<const std::uint32_t> reached() const noexcept { return reached_; }
   // A vertex's distance along the surface from the last compute(); +infinity beyond the radius.
   float distance_mm(std::uint32_t vertex) const noexcept;
@@ -39,8 +41,9 @@ class GeodesicField {
 
  private:
   void update(std::uint32_t vertex, std::uint32_t triangle);
+  void correct_along_edge_arrivals();
   float unfolded_update(std::uint32_t c, std::uint32_t a, std::uint32_t b, std::uint32_t triangle) const;
-  void push_or_lower(std::uint32_t vertex, float distance);
+  void push_or_lower(std::uint32_t vertex, float distance, bool along_edge);
   std::uint32_t pop();
   void sift_up(std::size_t at);
   void sift_down(std::size_t at);
@@ -50,6 +53,8 @@ class GeodesicField {
   std::vector<std::int32_t> across_;  // across_[3t + e]: the triangle beyond edge e (corners e, e+1) of t
   std::vector<float> distance_;
   std::vector<std::uint8_t> alive_;
+  std::vector<std::uint8_t> along_edge_;  // the vertex's distance came along an edge, not through a triangle
+  std::vector<std::uint8_t> lowered_;     // scratch of correct_along_edge_arrivals()
   std::vector<std::int32_t> heap_position_;  // -1: not in the heap
   std::vector<std::uint32_t> heap_, touched_, reached_;
 };
