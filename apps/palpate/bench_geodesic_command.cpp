@@ -138,9 +138,8 @@ std::vector<ContactSite> contact_sites(const Mesh& mesh, std::size_t count) {
   return sites;
 }
 
-Dent along_surface(Dent dent, const SurfacePatch& patch) {
+Dent along_surface(Dent dent) {
   dent.along_surface = true;
-  dent.seed_radius_mm = patch.seed_radius_mm();
   return dent;
 }
 
@@ -294,7 +293,7 @@ int bench_geodesic(const GeodesicOptions& options) {
         glFinish();
         upload_ms.push_back(milliseconds_since(start));
 
-        const Dent straight{site.point_mm, 1.0f, sigma}, along = along_surface(straight, patch);
+        const Dent straight{site.point_mm, 1.0f, sigma}, along = along_surface(straight);
         std::size_t bleed_here = 0;
         for (std::size_t v = 0; v < mesh.vertex_count(); ++v) {
           const glm::vec3 p = mesh.positions_mm[v];
@@ -391,7 +390,7 @@ int bench_geodesic(const GeodesicOptions& options) {
           if (variant.max_slope > 0.0f) dent = dent_with_slope_limit(dent, variant.max_slope);
           if (variant.falloff == Falloff::geodesic) {
             patch.compute(site.triangle, site.point_mm, dent_cutoff_sigmas * dent.sigma_mm);
-            dent = along_surface(dent, patch);
+            dent = along_surface(dent);
             if (variant.pushed) dent.normal = patch.contact_normal();
           }
           deform_mesh(mesh, glm::mat4(1.0f), {&dent, 1}, deformed,

@@ -18,14 +18,6 @@ float dent_slope(float d, float depth_mm, float sigma_mm) noexcept {
 
 namespace {
 
-// The weight of the sample's distance against the straight line's (deform.hpp): 0 within the contact
-// triangle's reach, 1 from twice that on.
-float surface_blend(const Dent& dent, float sample_distance) noexcept {
-  const float r = std::clamp(dent.seed_radius_mm, 1e-4f * dent.sigma_mm, 0.75f * dent.sigma_mm);
-  const float t = std::clamp((sample_distance - r) / r, 0.0f, 1.0f);
-  return t * t * (3.0f - 2.0f * t);
-}
-
 // d, and the vector toward the contact whose tangential part sets the tilt's direction (VC, or the
 // sample's direction scaled to d).
 struct DentReach {
@@ -37,8 +29,10 @@ DentReach dent_reach(const Dent& dent, bool first, glm::vec3 v, glm::vec4 sample
   const glm::vec3 to_contact = dent.center_mm - v;  // VC
   const float straight = glm::length(to_contact);
   if (!(first && dent.along_surface)) return {straight, to_contact};
-  const float t = surface_blend(dent, sample.w), along = std::max(sample.w, straight);
-  return {straight + (along - straight) * t, to_contact + (glm::vec3(sample) * along - to_contact) * t};
+  // What the shaders interpolate (deform.hpp), here at the vertex itself.
+  const float along = std::max(sample.w, straight);
+  const glm::vec4 beyond_straight(glm::vec3(sample) * along - to_contact, along - straight);
+  return {straight + beyond_straight.w, to_contact + glm::vec3(beyond_straight)};
 }
 
 }  // namespace
@@ -115,7 +109,6 @@ Dent dent_in_space(const Dent& dent, const glm::mat4& to_space) noexcept {
               dent.depth_mm * scale,
               dent.sigma_mm * scale,
               dent.along_surface,
-              dent.seed_radius_mm * scale,
               glm::mat3(to_space) * dent.normal / scale};
 }
 

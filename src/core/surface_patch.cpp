@@ -67,10 +67,6 @@ void SurfacePatch::compute(std::int64_t triangle, glm::vec3 point_mm, float radi
   const glm::vec3 face = glm::cross(welded_.positions_mm[corners[1]] - welded_.positions_mm[corners[0]],
                                     welded_.positions_mm[corners[2]] - welded_.positions_mm[corners[0]]);
   contact_normal_ = glm::length(face) > 0.0f ? glm::normalize(face) : glm::vec3(0.0f);
-  seed_radius_mm_ = 0.0f;
-  for (int k = 0; k < 3; ++k) {
-    seed_radius_mm_ = std::max(seed_radius_mm_, glm::distance(welded_.positions_mm[corners[k]], point_mm));
-  }
 
   // The direction of the distance's gradient at each vertex: the area-weighted mean of the gradients
   // of its linear interpolation over the triangles around it that lie wholly in the patch.

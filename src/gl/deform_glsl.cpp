@@ -16,7 +16,6 @@ constexpr std::string_view uniform_block = R"glsl(layout(std140) uniform Palpate
   vec4 palpate_dent_shape[PALPATE_MAX_DENTS];         // x (4 sigma)^2, y 1/(2 sigma^2), z p/sigma^2, w sigma
   int palpate_dent_count;
   int palpate_surface_dent;     // 1: the first dent falls off along the surface (the vertex's surface sample)
-  float palpate_surface_seed;   // the radius within which it blends into the straight line
   vec4 palpate_surface_normal;  // xyz: the direction it pushes every vertex against (zero: their own)
 };
 )glsl";
@@ -25,7 +24,6 @@ constexpr std::string_view uniform_arrays =
 uniform vec4 palpate_dent_shape[PALPATE_MAX_DENTS];  // x (4 sigma)^2, y 1/(2 sigma^2), z p/sigma^2, w sigma
 uniform int palpate_dent_count;
 uniform int palpate_surface_dent;    // 1: the first dent falls off along the surface (the surface sample)
-uniform float palpate_surface_seed;  // the radius within which it blends into the straight line
 uniform vec4 palpate_surface_normal;  // xyz: the direction it pushes every vertex against (zero: their own)
 )glsl";
 
@@ -33,15 +31,23 @@ uniform vec4 palpate_surface_normal;  // xyz: the direction it pushes every vert
 // PALPATE_DENT_SLOTS slots so that the data is read at constant offsets (a software rasterizer gathers
 // lane by lane from a dynamic index); dents past the slots are ignored.
 constexpr std::string_view functions =
-    R"glsl(// The distance d of the first dent along the surface, from the vertex's surface sample (xyz the unit
-// direction toward the contact along the surface, w the distance along it), blended into the straight
-// line e within the contact triangle's reach (palpate/core/deform.hpp); `toward` becomes the vector
-// whose tangential part points the way to the contact (VC for the straight line).
-float palpate_surface_distance(float e, vec4 surface, inout vec3 toward) {
-  float t = smoothstep(palpate_surface_seed, 2.0 * palpate_surface_seed, surface.w);
+    R"glsl(// The vertex stage's first step for a dent along the surface: from the vertex's surface sample (xyz the
+// unit direction toward the contact along the surface, w the distance along it; the space's units),
+// what the surface adds to the straight line from the vertex to the first dent's contact
+// (palpate/core/deform.hpp). Hand it to palpate_displace and, interpolated, to the fragment stage's
+// functions: unlike the distance itself, it interpolates well up to the contact.
+vec4 palpate_surface_varying(vec3 position, vec4 surface) {
+  vec3 to_contact = palpate_dent_center_depth[0].xyz - position;
+  float e = length(to_contact);
   float along = max(surface.w, e);
-  toward = mix(toward, surface.xyz * along, t);
-  return mix(e, along, t);
+  return vec4(surface.xyz * along - to_contact, along - e);
+}
+
+// The distance d of the first dent along the surface, from the straight line e and the varying above;
+// `toward` (VC) becomes the vector whose tangential part points the way to the contact.
+float palpate_surface_distance(float e, vec4 surface, inout vec3 toward) {
+  toward += surface.xyz;
+  return e + surface.w;
 }
 
 // V' = V - D * sum G(d), G(d) = p exp(-d^2 / 2 sigma^2), d = |V - c| (or along the surface for the first
@@ -226,8 +232,6 @@ DeformBlockData make_deform_block_data(std::span<const Dent> dents) noexcept {
   data.count = static_cast<std::int32_t>(count);
   if (count > 0 && dents[0].along_surface) {
     data.surface_dent = 1;
-    data.surface_seed =  // as the CPU twin
-        std::clamp(dents[0].seed_radius_mm, 1e-4f * dents[0].sigma_mm, 0.75f * dents[0].sigma_mm);
     data.surface_normal = glm::vec4(dents[0].normal, 0.0f);
   }
   return data;

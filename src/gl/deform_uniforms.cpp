@@ -59,7 +59,6 @@ DeformUniforms::DeformUniforms(std::uint32_t program, std::uint32_t block_bindin
   shape_location_ = glGetUniformLocation(program, "palpate_dent_shape");
   count_location_ = glGetUniformLocation(program, "palpate_dent_count");
   surface_dent_location_ = glGetUniformLocation(program, "palpate_surface_dent");
-  surface_seed_location_ = glGetUniformLocation(program, "palpate_surface_seed");
   surface_normal_location_ = glGetUniformLocation(program, "palpate_surface_normal");
   if (center_depth_location_ < 0 && shape_location_ < 0) {
     throw Error("DeformUniforms: program " + std::to_string(program) + " has neither the uniform block " +
@@ -82,7 +81,6 @@ DeformUniforms::DeformUniforms(DeformUniforms&& other) noexcept
       shape_location_(other.shape_location_),
       count_location_(other.count_location_),
       surface_dent_location_(other.surface_dent_location_),
-      surface_seed_location_(other.surface_seed_location_),
       surface_normal_location_(other.surface_normal_location_),
       data_(other.data_) {}
 
@@ -97,7 +95,6 @@ DeformUniforms& DeformUniforms::operator=(DeformUniforms&& other) noexcept {
     shape_location_ = other.shape_location_;
     count_location_ = other.count_location_;
     surface_dent_location_ = other.surface_dent_location_;
-    surface_seed_location_ = other.surface_seed_location_;
     surface_normal_location_ = other.surface_normal_location_;
     data_ = other.data_;
   }
@@ -128,7 +125,6 @@ void DeformUniforms::apply() const noexcept {
   if (shape_location_ >= 0) glUniform4fv(shape_location_, max_dents, &data_.shape[0].x);
   if (count_location_ >= 0) glUniform1i(count_location_, data_.count);
   if (surface_dent_location_ >= 0) glUniform1i(surface_dent_location_, data_.surface_dent);
-  if (surface_seed_location_ >= 0) glUniform1f(surface_seed_location_, data_.surface_seed);
   if (surface_normal_location_ >= 0) glUniform4fv(surface_normal_location_, 1, &data_.surface_normal.x);
 }
 

@@ -39,7 +39,7 @@ void main() {
   v_color = color;
 #endif
 #ifdef PALPATE_DEFORM
-  v_surface = vec4(normal_matrix * surface.xyz, surface.w);
+  v_surface = palpate_surface_varying(world, vec4(normal_matrix * surface.xyz, surface.w));
   world = palpate_displace(world, normalize(normal_matrix * direction), v_surface);
 #endif
   gl_Position = view_projection * vec4(world, 1.0);

@@ -265,7 +265,6 @@ struct SurfaceFalloff {
                            patch.samples().data() + changed.first);
     }
     dent.along_surface = true;
-    dent.seed_radius_mm = patch.seed_radius_mm();
     dent.normal = glm::mat3(transform) * patch.contact_normal();
   }
 };

@@ -91,7 +91,6 @@ TEST(SurfacePatch, AcrossAFoldOnlyTheStraightLineDentsTheFacingSheet) {
   Dent straight{contact, depth, sigma};
   Dent along = straight;
   along.along_surface = true;
-  along.seed_radius_mm = patch.seed_radius_mm();
   float facing_straight = 0.0f, facing_along = 0.0f, near_difference = 0.0f;
   for (std::size_t v = 0; v < fold.vertex_count(); ++v) {
     const glm::vec3 p = fold.positions_mm[v];

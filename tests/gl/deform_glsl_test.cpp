@@ -31,7 +31,7 @@ namespace {
 std::string capture_vertex(const std::string& version, bool along_surface = false) {
   const bool old = version == "110" || version == "120";
   const std::string in = old ? "attribute" : "in", out = old ? "varying" : "out";
-  const std::string surface = along_surface ? ", surface" : "";
+  const std::string surface = along_surface ? ", palpate_surface_varying(position, surface)" : "";
   return "#version " + version + "\n" + in + " vec3 position;\n" + in + " vec3 normal;\n" + in +
          " vec4 surface;\n" + out + " vec3 displaced;\n" + out + " vec3 perturbed;\n" + out +
          " vec3 fragment_displaced;\n" +
@@ -212,10 +212,8 @@ TEST_F(DentedSphere, AlongTheSurfaceTheGpuEqualsTheCpuReference) {
   patch.compute(-1, dents[0].center_mm, dent_cutoff_sigmas * dents[0].sigma_mm);
   std::vector<Dent> along = dents;
   along[0].along_surface = true;
-  along[0].seed_radius_mm = patch.seed_radius_mm();
   along[0].normal = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));  // pushed one way, not along each normal
   along[1].along_surface = true;  // only the first dent has a patch: a later one uses the straight line
-  along[1].seed_radius_mm = 0.5f;
   const Captured gpu = capture(mesh, along, max_dents, "450 core", patch.samples());
   float worst_displacement = 0.0f, worst_angle = 0.0f, largest_change = 0.0f;
   for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
@@ -281,7 +279,6 @@ void expect_dialect_matches_the_cpu(const std::string& version, GlslDialect dial
   patch.compute(-1, dents[0].center_mm, dent_cutoff_sigmas * dents[0].sigma_mm);
   Dent along[] = {dents[0], dents[1]};
   along[0].along_surface = true;
-  along[0].seed_radius_mm = patch.seed_radius_mm();
   along[0].normal = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
   const Captured surface = capture(mesh, along, 2, version, patch.samples());
   worst_position = worst_angle = 0.0f;
@@ -320,16 +317,15 @@ TEST(DeformBlockLayout, MatchesTheDriversStd140Offsets) {
   glGetActiveUniformBlockiv(program.id(), block, GL_UNIFORM_BLOCK_DATA_SIZE, &size);
   EXPECT_EQ(static_cast<std::size_t>(size), sizeof(DeformBlockData));
   const char* names[] = {"palpate_dent_center_depth[0]", "palpate_dent_shape[0]", "palpate_dent_count",
-                         "palpate_surface_dent", "palpate_surface_seed"};
-  GLuint indices[5] = {};
-  glGetUniformIndices(program.id(), 5, names, indices);
-  GLint offsets[5] = {};
-  glGetActiveUniformsiv(program.id(), 5, indices, GL_UNIFORM_OFFSET, offsets);
+                         "palpate_surface_dent"};
+  GLuint indices[4] = {};
+  glGetUniformIndices(program.id(), 4, names, indices);
+  GLint offsets[4] = {};
+  glGetActiveUniformsiv(program.id(), 4, indices, GL_UNIFORM_OFFSET, offsets);
   EXPECT_EQ(offsets[0], static_cast<GLint>(offsetof(DeformBlockData, center_depth)));
   EXPECT_EQ(offsets[1], static_cast<GLint>(offsetof(DeformBlockData, shape)));
   EXPECT_EQ(offsets[2], static_cast<GLint>(offsetof(DeformBlockData, count)));
   EXPECT_EQ(offsets[3], static_cast<GLint>(offsetof(DeformBlockData, surface_dent)));
-  EXPECT_EQ(offsets[4], static_cast<GLint>(offsetof(DeformBlockData, surface_seed)));
   GLuint normal_index = 0;
   const char* normal_name = "palpate_surface_normal";
   glGetUniformIndices(program.id(), 1, &normal_name, &normal_index);

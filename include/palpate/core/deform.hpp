@@ -11,13 +11,13 @@
 // The geodesic falloff (beyond the paper): a dent marked `along_surface` measures d along the surface
 // instead of through the air, from a per-vertex sample (SurfacePatch, palpate/core/surface_patch.hpp):
 // xyz the unit direction toward the contact along the surface, w the distance along it. Interpolated
-// inside a triangle, that distance overestimates near the contact (the distance is a cone there, the
-// interpolation a plane), so within the contact triangle's reach (`seed_radius_mm`) it blends into the
-// straight-line one: with s the sample's distance and e = |V - c|,
-//     d = mix(e, max(s, e), smoothstep(r, 2r, s)),   r = clamp(seed_radius_mm, 1e-4 sigma, 0.75 sigma)
-// (within 1.5 sigma, so that a coarse mesh's long contact triangle cannot let the straight line reach a
-// facing bank 3 sigma away along the surface)
-// and the tilt of the normal follows the blend of VC and the sample's direction (w'(d) times the
+// inside a triangle, that distance would overestimate near the contact (the distance is a cone there,
+// the interpolation a plane), so the shaders interpolate what the surface adds to the straight line
+// instead: with s the sample's distance, u its direction, e = |V - c| and VC = c - V at the vertex,
+//     beyond = (u max(s, e) - VC, max(s, e) - e),     d = |P - c| + beyond.w,   toward = (c - P) + beyond.xyz
+// at a point P, `beyond` interpolated from the corners: at a vertex d = max(s, e) exactly, near the
+// contact (where the surface is the contact's plane) beyond is zero and d the straight line, and d is
+// never shorter than the straight line. The tilt of the normal follows `toward` (w'(d) times the
 // distance's gradient). Only the first dent of an object can fall off along the surface (one patch per
 // object); later dents use the straight line.
 // Such a dent also pushes every vertex one way, along -`normal` (the contact's outward normal), as
@@ -44,7 +44,6 @@ struct Dent {
   float sigma_mm = 1.0f;      // spread of the touched object's material
   // The geodesic falloff: d from the per-vertex surface sample (first dent only; see above).
   bool along_surface = false;
-  float seed_radius_mm = 0.0f;  // the contact triangle's farthest corner from c
   glm::vec3 normal{0.0f};       // the contact's outward unit normal: the push's direction when along_surface
 };
 
@@ -90,8 +89,8 @@ void deform_mesh(const Mesh& mesh, const glm::mat4& transform, std::span<const D
 // The dent as seen in another space, for hosts whose shaders work there (eye space, metres, ...): the
 // formulas hold in any one space, as long as positions, directions and dents are all in it.
 // `to_space` maps world millimetres to that space: a rotation and translation with, at most, a uniform
-// scale (a view matrix times 0.001 for a host in metres). The centre is mapped; depth, sigma and the
-// seed radius are scaled by the matrix's scale (a surface sample goes with surface_sample_in_space).
+// scale (a view matrix times 0.001 for a host in metres). The centre is mapped; depth and sigma are
+// scaled by the matrix's scale (a surface sample goes with surface_sample_in_space).
 Dent dent_in_space(const Dent& dent, const glm::mat4& to_space) noexcept;
 // A surface sample of the object frame in that space: its direction rotated by `to_space`'s rotation,
 // its distance scaled by its scale (`to_space` from the object frame, as for the positions).

@@ -14,7 +14,7 @@
 //     dent = palpate::dent_with_slope_limit(dent, palpate::surface_dent_max_slope);
 //     patch.compute(contact_triangle, contact_point, 4 * dent.sigma_mm);
 //     upload patch.samples()[changed.first, changed.first + changed.count) into the vertex attribute
-//     dent.along_surface = true; dent.seed_radius_mm = patch.seed_radius_mm();
+//     dent.along_surface = true;
 //     dent.normal = the rotation to the dent's space * patch.contact_normal();
 #include <cstdint>
 #include <glm/vec3.hpp>
@@ -53,8 +53,6 @@ class SurfacePatch {
   std::span<const glm::vec4> samples() const noexcept { return samples_; }
   // The vertices whose samples the last compute() or clear() rewrote: the last patch and the new one.
   Range changed() const noexcept { return changed_; }
-  // The farthest corner of the contact triangle from the point (Dent::seed_radius_mm).
-  float seed_radius_mm() const noexcept { return seed_radius_mm_; }
   // The contact triangle's outward unit normal, object frame (Dent::normal once taken to world).
   glm::vec3 contact_normal() const noexcept { return contact_normal_; }
   // Vertices (welded) in the current patch.
@@ -72,7 +70,6 @@ class SurfacePatch {
   std::vector<glm::vec3> gradient_sum_;  // per welded vertex, scratch
   std::vector<std::uint32_t> patch_;     // welded vertices with a sample now
   Range changed_;
-  float seed_radius_mm_ = 0.0f;
   glm::vec3 contact_normal_{0.0f};
 };
 

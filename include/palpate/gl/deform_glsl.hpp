@@ -75,14 +75,13 @@ struct DeformBlockData {
   glm::vec4 shape[max_dents];         // x (cutoff 4 sigma)^2, y 1/(2 sigma^2), z p / sigma^2, w sigma
   std::int32_t count;                 // dents in use, 0..max_dents
   std::int32_t surface_dent;          // 1: the first dent falls off along the surface
-  float surface_seed;                 // its blend radius, clamp(Dent::seed_radius_mm, 1e-4, 0.75 sigma)
-  std::int32_t padding;
+  std::int32_t padding[2];
   glm::vec4 surface_normal;  // xyz: Dent::normal of the first dent, where it falls off along the surface
 };
 static_assert(offsetof(DeformBlockData, center_depth) == 0);
 static_assert(offsetof(DeformBlockData, shape) == 16 * max_dents);
 static_assert(offsetof(DeformBlockData, count) == 32 * max_dents);
-static_assert(offsetof(DeformBlockData, surface_seed) == 32 * max_dents + 8);
+static_assert(offsetof(DeformBlockData, surface_dent) == 32 * max_dents + 4);
 static_assert(offsetof(DeformBlockData, surface_normal) == 32 * max_dents + 16);
 static_assert(sizeof(DeformBlockData) == 32 * max_dents + 32);
 

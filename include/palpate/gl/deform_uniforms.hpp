@@ -54,7 +54,7 @@ class DeformUniforms {
   GlslDialect dialect_ = GlslDialect::uniform_block;
   std::uint32_t buffer_ = 0, binding_ = default_binding;
   std::int32_t center_depth_location_ = -1, shape_location_ = -1, count_location_ = -1;  // arrays only
-  std::int32_t surface_dent_location_ = -1, surface_seed_location_ = -1, surface_normal_location_ = -1;
+  std::int32_t surface_dent_location_ = -1, surface_normal_location_ = -1;
   DeformBlockData data_{};
 };
 
