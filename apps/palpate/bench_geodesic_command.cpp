@@ -242,8 +242,10 @@ void save_pictures(const std::filesystem::path& folder, const Surface& surface, 
   std::printf("picture: %s\n", file.string().c_str());
 }
 
+constexpr double weight_error_target = 0.03;  // of p
+
 int bench_geodesic(const GeodesicOptions& options) {
-  const std::size_t contacts = options.quick ? 20 : 200, exact_contacts = options.quick ? 2 : 10;
+  const std::size_t contacts = options.quick ? 20 : 200, exact_contacts = options.quick ? 2 : 60;
   const std::size_t frames = options.quick ? 6 : 80, fold_presses = options.quick ? 3 : 20;
   const std::vector<float> sigmas = {2.0f, 4.0f, 8.0f};
   constexpr float bleed_weight = 0.05f, fold_sigma_mm = 4.0f;
@@ -256,8 +258,9 @@ int bench_geodesic(const GeodesicOptions& options) {
                            {"folds", nlohmann::json::array()}};
   std::printf(
       "\n| mesh | vertices | sigma mm | contacts | bleed straight | bleed geodesic | weight error mean / "
-      "max (exact, %zu contacts) | update ms p50 / p99 | upload ms p50 / p99 | patch vertices p50 | "
-      "frame overhead |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+      "max (exact, %zu contacts) | contacts over 0.03 | update ms p50 / p99 | upload ms p50 / p99 | patch "
+      "vertices p50 | "
+      "frame overhead |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
       exact_contacts);
   std::vector<Surface> all = surfaces(options);
   for (const Surface& surface : all) {
@@ -278,6 +281,7 @@ int bench_geodesic(const GeodesicOptions& options) {
       std::size_t bleed_straight = 0, bleed_along = 0;
       std::vector<double> update_ms, upload_ms, patch_vertices;
       double error_sum = 0.0, error_max = 0.0;
+      std::size_t over_target = 0;  // contacts whose largest weight error passes issue 14's 0.03 of p
       for (std::size_t i = 0; i < sites.size(); ++i) {
         const ContactSite& site = sites[i];
         Clock::time_point start = Clock::now();
@@ -308,24 +312,29 @@ int bench_geodesic(const GeodesicOptions& options) {
             seen_from_outside(tree, site, picture_distance_mm)) {
           worst_bleed = bleed_here, picture_site = &site;
         }
-        if (i < exact_contacts) {
-          const testing::WeightErrors errors = testing::weight_errors_against_exact(
-              mesh, site.triangle, site.point_mm, sigma, [&](std::uint32_t v) {
-                return dent_distance(along, mesh.positions_mm[v], patch.samples()[v]);
-              });
-          error_sum += errors.mean;
-          error_max = std::max(error_max, errors.max);
-        }
+      }
+      // Against the exact paths after the timed updates, so that CGAL's work leaves no cold caches to them.
+      for (std::size_t i = 0; i < std::min(exact_contacts, sites.size()); ++i) {
+        const ContactSite& site = sites[i];
+        patch.compute(site.triangle, site.point_mm, dent_cutoff_sigmas * sigma);
+        const Dent along = along_surface(Dent{site.point_mm, 1.0f, sigma});
+        const testing::WeightErrors errors = testing::weight_errors_against_exact(
+            mesh, site.triangle, site.point_mm, sigma,
+            [&](std::uint32_t v) { return dent_distance(along, mesh.positions_mm[v], patch.samples()[v]); });
+        error_sum += errors.mean;
+        error_max = std::max(error_max, errors.max);
+        over_target += errors.max > weight_error_target;
       }
       const FrameTimes times = time_frames(mesh, sigma, sites, frames, target);
       const double overhead = (median(times.along) / median(times.straight) - 1.0) * 100.0;
       const double error_mean = error_sum / double(std::min(exact_contacts, sites.size()));
       const Percentiles update = percentiles(update_ms), upload = percentiles(upload_ms);
       std::printf(
-          "| %s | %s | %.0f | %zu | %s | %s | %.4f / %.3f | %.3f / %.3f | %.3f / %.3f | %.0f | %+.1f%% |\n",
+          "| %s | %s | %.0f | %zu | %s | %s | %.4f / %.3f | %zu | %.3f / %.3f | %.3f / %.3f | %.0f | %+.1f%% "
+          "|\n",
           surface.name.c_str(), with_thousands(mesh.vertex_count()).c_str(), sigma, sites.size(),
           with_thousands(bleed_straight).c_str(), with_thousands(bleed_along).c_str(), error_mean, error_max,
-          update.p50, update.p99, upload.p50, upload.p99, median(patch_vertices), overhead);
+          over_target, update.p50, update.p99, upload.p50, upload.p99, median(patch_vertices), overhead);
       std::fflush(stdout);
       report["rows"].push_back(
           {{"mesh", surface.name},
@@ -337,6 +346,7 @@ int bench_geodesic(const GeodesicOptions& options) {
            {"weight_error_mean", error_mean},
            {"weight_error_max", error_max},
            {"exact_contacts", std::min(exact_contacts, sites.size())},
+           {"weight_error_contacts_over_0_03", over_target},
            {"update_ms", p50_p99(update_ms)},
            {"upload_ms", p50_p99(upload_ms)},
            {"patch_vertices_p50", median(patch_vertices)},

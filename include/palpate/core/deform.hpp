@@ -44,7 +44,7 @@ struct Dent {
   float sigma_mm = 1.0f;      // spread of the touched object's material
   // The geodesic falloff: d from the per-vertex surface sample (first dent only; see above).
   bool along_surface = false;
-  glm::vec3 normal{0.0f};       // the contact's outward unit normal: the push's direction when along_surface
+  glm::vec3 normal{0.0f};  // the contact's outward unit normal: the push's direction when along_surface
 };
 
 // A vertex's surface sample where no patch reaches: any dent along the surface has zero weight there.

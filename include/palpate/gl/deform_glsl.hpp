@@ -20,12 +20,13 @@
 // The CPU twins are palpate::displaced_position and palpate::perturbed_normal (palpate/core/deform.hpp);
 // tests hold them together.
 //
-// The geodesic falloff (a dent spreads along the surface, not through the air): pass each vertex's
+// The geodesic falloff (a dent spreads along the surface, not through the air): turn each vertex's
 // surface sample (palpate::SurfacePatch, palpate/core/surface_patch.hpp: a vec4 attribute, its xyz
-// rotated into the shaders' space and its w scaled to its unit, surface_sample_in_space) on to the
-// fragment stage and call the overloads that take it:
-//     vec3 moved = palpate_displace(rest, direction, surface);
-//     vec3 n = palpate_perturb_normal(normal_in, rest_in, surface_in);
+// rotated into the shaders' space and its w scaled to its unit, surface_sample_in_space) into what the
+// stages interpolate, pass that on to the fragment stage and call the overloads that take it:
+//     vec4 surface_out = palpate_surface_varying(rest, surface);
+//     vec3 moved = palpate_displace(rest, direction, surface_out);
+//     vec3 n = palpate_perturb_normal(normal_in, rest_in, surface_in);   // surface_out, interpolated
 // The first dent falls off along the surface where the data says so (Dent::along_surface, set by
 // DeformUniforms); the two-argument functions always use the straight line.
 #include <cstddef>
