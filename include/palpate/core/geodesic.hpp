@@ -11,6 +11,7 @@
 // on a triangle mesh with a workspace reused per frame (CGAL's exact shortest paths serve as the test's
 // reference: exact, but far too slow per frame).
 #include <cstdint>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <span>
 #include <vector>
@@ -43,6 +44,8 @@ class GeodesicField {
   void update(std::uint32_t vertex, std::uint32_t triangle);
   void correct_along_edge_arrivals();
   float unfolded_update(std::uint32_t c, std::uint32_t a, std::uint32_t b, std::uint32_t triangle) const;
+  float unless_a_false_source(std::uint32_t a, std::uint32_t b, std::uint32_t triangle, glm::vec2 source,
+                              glm::vec2 c2, float distance) const;
   void push_or_lower(std::uint32_t vertex, float distance, bool along_edge);
   std::uint32_t pop();
   void sift_up(std::size_t at);
