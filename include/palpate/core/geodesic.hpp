@@ -4,12 +4,14 @@
 // named limit of its Euclidean falloff).
 //
 // Fast marching on the triangles (Kimmel and Sethian, 1998): the front leaves the contact triangle's
-// three corners with their in-plane distances and crosses each triangle as a plane wave from the
-// unfolded source of its two known corners; at an obtuse corner the neighbouring triangle is unfolded
-// into the plane, so the front is not forced along edges there; a vertex the front still reached along
-// an edge is updated again once its later neighbours are known. Written here: no Debian library marches
-// on a triangle mesh with a workspace reused per frame (CGAL's exact shortest paths serve as the test's
-// reference: exact, but far too slow per frame).
+// three corners with their in-plane distances and crosses each triangle from the virtual point source
+// that its two known corners place in its plane; at an obtuse corner the neighbouring triangle is
+// unfolded into the plane, so the front is not forced along edges there. A vertex the front still
+// reached along an edge is updated again once its later neighbours are known, and a triangle whose
+// corners the front reached from either side of a saddle vertex or a fold (its source proves false) is
+// crossed through its neighbour instead. Written here: no Debian library marches on a triangle mesh
+// with a workspace reused per frame (CGAL's exact shortest paths serve as the test's reference: exact,
+// but far too slow per frame).
 #include <cstdint>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
