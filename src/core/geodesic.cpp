@@ -210,16 +210,9 @@ void GeodesicField::update(std::uint32_t c, std::uint32_t triangle) {
 // march, checked only where the update would lower the vertex.
 float GeodesicField::unless_a_false_source(std::uint32_t a, std::uint32_t b, std::uint32_t triangle,
                                            glm::vec2 source, glm::vec2 c2, float distance) const {
-  const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(triangle)];
-  int edge = -1;
-  for (int e = 0; e < 3; ++e) {
-    const std::uint32_t u = corners[e], v = corners[(e + 1) % 3];
-    if ((u == a && v == b) || (u == b && v == a)) edge = e;
-  }
-  const std::int32_t next = edge < 0 ? -1 : across_[3 * std::size_t(triangle) + edge];
-  if (next < 0) return distance;
-  const std::uint32_t* far = &mesh_.indices[3 * std::size_t(next)];
-  const std::uint32_t x = far[0] != a && far[0] != b ? far[0] : far[1] != a && far[1] != b ? far[1] : far[2];
+  const Across beyond = across(triangle, a, b);
+  if (beyond.triangle < 0) return distance;
+  const std::uint32_t x = beyond.corner;
   if (!alive_[x]) return distance;
   const glm::vec3 pa = mesh_.positions_mm[a], pb = mesh_.positions_mm[b];
   const glm::vec2 a2(0.0f), b2(glm::distance(pa, pb), 0.0f),
@@ -230,10 +223,23 @@ float GeodesicField::unless_a_false_source(std::uint32_t a, std::uint32_t b, std
                    planar_update(x2, distance_[x], b2, distance_[b], c2)});
 }
 
-// The triangle's own plane wave; at an obtuse corner c, Kimmel and Sethian's unfolding: the triangles
-// across ab are laid into the plane, one after another, until a corner d' splits the corner at c into
-// two acute ones; the front then arrives at c from (a, d') and (d', b), through the strip, not along an
-// edge. Up to `max_unfoldings` triangles.
+GeodesicField::Across GeodesicField::across(std::uint32_t triangle, std::uint32_t p, std::uint32_t q) const {
+  const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(triangle)];
+  int edge = -1;
+  for (int e = 0; e < 3; ++e) {
+    const std::uint32_t u = corners[e], v = corners[(e + 1) % 3];
+    if ((u == p && v == q) || (u == q && v == p)) edge = e;
+  }
+  const std::int32_t next = edge < 0 ? -1 : across_[3 * std::size_t(triangle) + edge];
+  if (next < 0) return {-1, 0};
+  const std::uint32_t* far = &mesh_.indices[3 * std::size_t(next)];
+  return {next, far[0] != p && far[0] != q ? far[0] : far[1] != p && far[1] != q ? far[1] : far[2]};
+}
+
+// The triangle's own update from the source its corners a and b place; at an obtuse corner c, Kimmel and
+// Sethian's unfolding: the triangles across ab are laid into the plane, one after another, until a corner d'
+// splits the corner at c into two acute ones; the front then arrives at c from (a, d') and (d', b), through
+// the strip, not along an edge. Up to `max_unfoldings` triangles.
 float GeodesicField::unfolded_update(std::uint32_t c, std::uint32_t a, std::uint32_t b,
                                      std::uint32_t triangle) const {
   constexpr int max_unfoldings = 6;
@@ -250,19 +256,9 @@ float GeodesicField::unfolded_update(std::uint32_t c, std::uint32_t a, std::uint
   std::uint32_t p = a, q = b, current = triangle;
   glm::vec2 p2 = a2, q2 = b2, behind = c2;
   for (int level = 0; level < max_unfoldings; ++level) {
-    const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(current)];
-    int edge = -1;
-    for (int e = 0; e < 3; ++e) {
-      const std::uint32_t u = corners[e], v = corners[(e + 1) % 3];
-      if ((u == p && v == q) || (u == q && v == p)) edge = e;
-    }
-    if (edge < 0) return best;
-    const std::int32_t next = across_[3 * std::size_t(current) + edge];
-    if (next < 0) return best;
-    const std::uint32_t* far = &mesh_.indices[3 * std::size_t(next)];
-    const std::uint32_t d = far[0] != p && far[0] != q   ? far[0]
-                            : far[1] != p && far[1] != q ? far[1]
-                                                         : far[2];
+    const Across beyond = across(current, p, q);
+    if (beyond.triangle < 0) return best;
+    const std::uint32_t d = beyond.corner;
     // d laid out across (p2, q2), on the side away from `behind`.
     const glm::vec2 edge2 = q2 - p2;
     const float length = glm::length(edge2);
@@ -289,7 +285,7 @@ float GeodesicField::unfolded_update(std::uint32_t c, std::uint32_t a, std::uint
       behind = p2;
       p = d, p2 = d2;
     }
-    current = std::uint32_t(next);
+    current = std::uint32_t(beyond.triangle);
   }
   return best;
 }

@@ -43,6 +43,12 @@ class GeodesicField {
   }
 
  private:
+  // The triangle beyond edge (p, q) of `triangle` (-1: none, or not an edge of it) and its third corner.
+  struct Across {
+    std::int32_t triangle;
+    std::uint32_t corner;
+  };
+  Across across(std::uint32_t triangle, std::uint32_t p, std::uint32_t q) const;
   void update(std::uint32_t vertex, std::uint32_t triangle);
   void correct_along_edge_arrivals();
   float unfolded_update(std::uint32_t c, std::uint32_t a, std::uint32_t b, std::uint32_t triangle) const;
