@@ -253,11 +253,12 @@ struct SurfaceFalloff {
 
   // Marches from `dent` (world) on `triangle` (the object's, in the renderer's order; -1: unknown) and
   // uploads what changed; the dent then falls off along the surface, pushing every vertex against the
-  // contact triangle's normal, widened where its slope would pass surface_dent_max_slope.
+  // contact triangle's normal, widened where its slope would pass surface_dent_max_slope, and walls it
+  // would pass through give way. The transform is rigid: depth and sigma are the same in the object frame.
   void update(Dent& dent, const glm::mat4& transform, std::int64_t triangle) {
     dent = dent_with_slope_limit(dent, surface_dent_max_slope);
     const glm::vec3 point = glm::vec3(glm::inverse(transform) * glm::vec4(dent.center_mm, 1.0f));
-    patch.compute(triangle, point, dent_cutoff_sigmas * dent.sigma_mm);
+    patch.compute(triangle, point, SurfacePatch::PushedDent{dent.depth_mm, dent.sigma_mm});
     const SurfacePatch::Range changed = patch.changed();
     if (changed.count > 0) {
       glNamedBufferSubData(buffer, static_cast<GLintptr>(changed.first * sizeof(glm::vec4)),

@@ -122,5 +122,64 @@ TEST(SurfacePatch, AcrossAFoldOnlyTheStraightLineDentsTheFacingSheet) {
   EXPECT_LT(tilted.x, -0.1f);  // toward -x, where the contact is
 }
 
+// A slab 3 mm thick and open at its sides: two 60 x 60 mm sheets (1 mm cells), the top at z = 1.5
+// facing +z, the bottom at z = -1.5 facing -z. Along the surface the bottom cannot be reached from the top.
+Mesh make_thin_slab() {
+  Mesh slab = make_grid(60.0f, 60);
+  const std::size_t sheet = slab.vertex_count();
+  Mesh bottom = slab;
+  for (glm::vec3& p : slab.positions_mm) p.z = 1.5f;
+  for (glm::vec3& p : bottom.positions_mm) p.z = -1.5f;
+  for (glm::vec3& n : bottom.normals) n = -n;
+  for (std::size_t i = 0; i < bottom.indices.size(); i += 3)
+    std::swap(bottom.indices[i + 1], bottom.indices[i + 2]);
+  slab.positions_mm.insert(slab.positions_mm.end(), bottom.positions_mm.begin(), bottom.positions_mm.end());
+  slab.normals.insert(slab.normals.end(), bottom.normals.begin(), bottom.normals.end());
+  for (const std::uint32_t i : bottom.indices) slab.indices.push_back(std::uint32_t(i + sheet));
+  return slab;
+}
+
+TEST(SurfacePatch, APressDeeperThanTheWallBehindPushesTheWallAhead) {
+  const Mesh slab = make_thin_slab();
+  const std::size_t sheet = slab.vertex_count() / 2;
+  const glm::vec3 contact(0.3f, -0.2f, 1.5f);
+  const Dent dent = dent_with_slope_limit(Dent{contact, 6.0f, 3.0f}, surface_dent_max_slope);
+  SurfacePatch patch(slab);
+  // The smallest gap left between the sheets along any vertical line, and how far the bottom moved
+  // where the top's dent is below a tenth of p.
+  const auto gaps = [&] {
+    Dent along = dent;
+    along.along_surface = true;
+    along.normal = patch.contact_normal();
+    float least_gap = 1.0e9f, far_bottom_moved = 0.0f;
+    for (std::size_t v = 0; v < sheet; ++v) {
+      const glm::vec3 top =
+          displaced_position(slab.positions_mm[v], slab.normals[v], {&along, 1}, patch.samples()[v]);
+      const glm::vec3 bottom = displaced_position(slab.positions_mm[v + sheet], slab.normals[v + sheet],
+                                                  {&along, 1}, patch.samples()[v + sheet]);
+      least_gap = std::min(least_gap, top.z - bottom.z);
+      if (1.5f - top.z < 0.1f * dent.depth_mm)
+        far_bottom_moved = std::max(far_bottom_moved, -1.5f - bottom.z);
+    }
+    return std::pair(least_gap, far_bottom_moved);
+  };
+  patch.compute(-1, contact, dent_cutoff_sigmas * dent.sigma_mm);  // the distance alone
+  const auto [through, untouched] = gaps();
+  EXPECT_LT(through, -2.5f);  // 6 mm deep through 3 mm
+  EXPECT_EQ(untouched, 0.0f);
+  EXPECT_EQ(patch.walls_given_way(), 0u);
+
+  patch.compute(-1, contact, SurfacePatch::PushedDent{dent.depth_mm, dent.sigma_mm});
+  const auto [kept, far_moved] = gaps();
+  // The bottom moves at least G - 0.8 t: a fifth of the 3 mm gap stays.
+  EXPECT_GE(kept, 0.2f * 3.0f - 1.0e-3f);
+  EXPECT_EQ(far_moved, 0.0f);  // where the top moves less than 2.4 mm, the bottom stays
+  EXPECT_GT(patch.walls_given_way(), 50u);
+  std::printf(
+      "thin slab, 6 mm press: least gap %.3f mm with the distance alone, %.3f mm with %zu wall vertices "
+      "given way\n",
+      through, kept, patch.walls_given_way());
+}
+
 }  // namespace
 }  // namespace palpate

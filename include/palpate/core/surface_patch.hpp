@@ -9,10 +9,14 @@
 // split at one position (flat shading, creases) are welded for the march, so the front crosses their
 // seams, and every copy gets the same sample.
 //
-//     palpate::SurfacePatch patch(mesh);                  // once: adjacency and workspace
+// A dent pushes every vertex one way (against the contact's normal). Where it is deeper than a wall
+// behind or beside it is thick, the dented surface would pass through that wall, which the surface
+// distance cannot know; given the dent's depth, compute() lets such walls give way (see PushedDent).
+//
+//     palpate::SurfacePatch patch(mesh);                  // once: adjacency, workspace, a BVH
 //     ...each frame, for the object's first dent (object frame):
 //     dent = palpate::dent_with_slope_limit(dent, palpate::surface_dent_max_slope);
-//     patch.compute(contact_triangle, contact_point, 4 * dent.sigma_mm);
+//     patch.compute(contact_triangle, contact_point, {dent.depth_mm, dent.sigma_mm});
 //     upload patch.samples()[changed.first, changed.first + changed.count) into the vertex attribute
 //     dent.along_surface = true;
 //     dent.normal = the rotation to the dent's space * patch.contact_normal();
@@ -22,6 +26,7 @@
 #include <span>
 #include <vector>
 
+#include "palpate/core/bvh.hpp"
 #include "palpate/core/deform.hpp"
 #include "palpate/core/displacement.hpp"
 #include "palpate/core/geodesic.hpp"
@@ -36,7 +41,19 @@ class SurfacePatch {
     std::uint32_t first = 0, count = 0;
   };
 
-  // Copies what it needs of `mesh` (its positions and triangles, welded by position). Allocates.
+  // A dent of depth p and spread sigma (object frame; sigma as widened by dent_with_slope_limit) that
+  // pushes every vertex against contact_normal(). Where the dent would move a vertex y by G(y) and a
+  // wall lies t behind y along the push, the wall's vertices there move at least G(y) - 0.8 t: the wall
+  // gives way ahead of the dent, keeping a fifth of the gap, and so do walls behind it in turn. Such a
+  // vertex's distance becomes the one at which the dent's Gaussian gives that push: between the
+  // straight line and the distance along the surface.
+  struct PushedDent {
+    float depth_mm = 0.0f, sigma_mm = 0.0f;
+  };
+  static constexpr float wall_gap_slope = 0.8f;
+
+  // Copies what it needs of `mesh` (its positions and triangles, welded by position) and builds a BVH of
+  // it for the walls. Allocates.
   explicit SurfacePatch(const Mesh& mesh);
   SurfacePatch(const SurfacePatch&) = delete;  // its field refers to its own welded mesh
   SurfacePatch& operator=(const SurfacePatch&) = delete;
@@ -46,6 +63,9 @@ class SurfacePatch {
   // the point, by a scan of the whole mesh (about 1 ms per 100,000 triangles): pass it when known. No
   // allocation.
   void compute(std::int64_t triangle, glm::vec3 point_mm, float radius_mm) noexcept;
+  // The patch of `dent` out to 4 sigma, with the walls it would pass through given way (PushedDent). No
+  // allocation.
+  void compute(std::int64_t triangle, glm::vec3 point_mm, PushedDent dent) noexcept;
   // No dent: the last patch goes back to no_surface_sample. No allocation.
   void clear() noexcept;
 
@@ -55,12 +75,16 @@ class SurfacePatch {
   Range changed() const noexcept { return changed_; }
   // The contact triangle's outward unit normal, object frame (Dent::normal once taken to world).
   glm::vec3 contact_normal() const noexcept { return contact_normal_; }
-  // Vertices (welded) in the current patch.
+  // Vertices (welded) in the current patch, and those of them that gave way as walls.
   std::size_t size() const noexcept { return patch_.size(); }
+  std::size_t walls_given_way() const noexcept { return walls_; }
 
  private:
   SurfacePatch(const Mesh& mesh, const PositionGroups& groups);
   std::uint32_t closest_triangle(glm::vec3 point_mm) const noexcept;
+  void march(std::int64_t triangle, glm::vec3 point_mm, float radius_mm) noexcept;
+  void give_way(PushedDent dent) noexcept;
+  void write_samples(glm::vec3 point_mm, float radius_mm) noexcept;
   void write(std::uint32_t welded_vertex, glm::vec4 sample) noexcept;
 
   Mesh welded_;
@@ -68,7 +92,13 @@ class SurfacePatch {
   GeodesicField field_;
   std::vector<glm::vec4> samples_;
   std::vector<glm::vec3> gradient_sum_;  // per welded vertex, scratch
+  Bvh walls_bvh_;                        // of welded_
+  std::vector<float> distance_mm_;       // per welded vertex: the sample's distance; +inf outside the patch
+  std::vector<float> push_mm_;           // per welded vertex, scratch: what the dent moves it by
+  std::vector<std::uint32_t> pending_;   // per welded vertex, scratch: a ring of vertices to cast from
+  std::vector<std::uint8_t> queued_;     // per welded vertex, scratch: whether it is in pending_
   std::vector<std::uint32_t> patch_;     // welded vertices with a sample now
+  std::size_t walls_ = 0;
   Range changed_;
   glm::vec3 contact_normal_{0.0f};
 };

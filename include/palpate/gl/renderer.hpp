@@ -13,9 +13,10 @@
 // renderer marches over the patch that dent reaches (SurfacePatch: about 0.1 to 1 ms on one core, see
 // docs/benchmarks.md) and uploads the vertices it changed; further dents on the object use the straight
 // line. That dent pushes every vertex against the contact triangle's normal and is widened where its
-// slope would pass surface_dent_max_slope, so that deep presses do not fold the surface through itself
-// (palpate/core/deform.hpp). Dent::along_surface in what the caller passes is ignored: the material
-// decides.
+// slope would pass surface_dent_max_slope, and a wall it would drive the surface through gives way
+// ahead of it (SurfacePatch::PushedDent), so that deep presses fold the surface through itself far less
+// (palpate/core/deform.hpp, docs/design.md). Dent::along_surface in what the caller passes is ignored: the
+// material decides.
 //
 // The deforming shaders are those of deform_glsl.hpp (world space in both stages), compiled for 1, 2, 4
 // or 8 dents; the triangles beyond every dent's 4-sigma reach are drawn by the plain shader, which gives
