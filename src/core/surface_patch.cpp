@@ -15,6 +15,9 @@ SurfacePatch::SurfacePatch(const Mesh& mesh, const PositionGroups& groups)
   Scene alone;
   alone.objects.push_back({"surface patch", welded_, glm::mat4(1.0f), Material{}, {}});
   walls_bvh_ = Bvh::build(alone);
+  std::vector<std::uint32_t> stamps(welded_.triangle_count(), 0);
+  clearance_mm_.resize(groups.count);
+  for (std::uint32_t v = 0; v < groups.count; ++v) clearance_mm_[v] = clearance(v, stamps, v + 1);
   distance_mm_.assign(groups.count, std::numeric_limits<float>::infinity());
   push_mm_.assign(groups.count, 0.0f);
   pending_.assign(groups.count, 0);
@@ -48,6 +51,51 @@ void SurfacePatch::clear() noexcept {
   }
   patch_.clear();
   walls_ = 0;
+}
+
+// A ray from the vertex shorter than this meets no triangle but those of its two rings (its own sheet,
+// where the dent's slope limit already keeps the order): the walls need no ray there. The distance to
+// the nearest other triangle, found in the BVH with the rings' triangles stamped out.
+float SurfacePatch::clearance(std::uint32_t welded_vertex, std::vector<std::uint32_t>& stamps,
+                              std::uint32_t stamp) const {
+  for (const std::uint32_t t : field_.triangles_around(welded_vertex)) {
+    for (int k = 0; k < 3; ++k) {
+      for (const std::uint32_t u :
+           field_.triangles_around(welded_.indices[3 * std::size_t(t) + std::size_t(k)]))
+        stamps[u] = stamp;
+    }
+  }
+  const glm::vec3 p = welded_.positions_mm[welded_vertex];
+  const glm::dvec3 point(p);
+  float best2 = std::numeric_limits<float>::infinity();
+  const auto& nodes = walls_bvh_.nodes();
+  const auto box_distance2 = [&](const Bvh::Node& node) {
+    const glm::vec3 outside = glm::max(glm::max(node.min - p, p - node.max), glm::vec3(0.0f));
+    return glm::dot(outside, outside);
+  };
+  std::uint32_t stack[Bvh::max_depth + 2];  // one child of each node on the path waits, and two at the end
+  std::size_t top = 0;
+  if (nodes.empty()) return best2;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Bvh::Node& node = nodes[stack[--top]];
+    if (box_distance2(node) >= best2) continue;
+    if (node.count == 0) {  // the nearer child on top
+      const bool left_nearer = box_distance2(nodes[node.first]) <= box_distance2(nodes[node.first + 1]);
+      stack[top++] = left_nearer ? node.first + 1 : node.first;
+      stack[top++] = left_nearer ? node.first : node.first + 1;
+      continue;
+    }
+    for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+      const Bvh::Triangle& triangle = walls_bvh_.triangle(i);
+      if (stamps[triangle.id] == stamp) continue;
+      const glm::dvec3 q =
+          closest_point_on_triangle(point, glm::dvec3(triangle.vertices[0]), glm::dvec3(triangle.vertices[1]),
+                                    glm::dvec3(triangle.vertices[2]));
+      best2 = std::min(best2, float(glm::dot(q - point, q - point)));
+    }
+  }
+  return std::sqrt(best2);
 }
 
 std::uint32_t SurfacePatch::closest_triangle(glm::vec3 point_mm) const noexcept {
@@ -150,7 +198,7 @@ void SurfacePatch::give_way(PushedDent dent) noexcept {
       }
     }
     const float reach_mm = push_mm_[y] / wall_gap_slope;
-    if (reach_mm <= start_mm) continue;
+    if (reach_mm <= start_mm || reach_mm < clearance_mm_[y]) continue;
     const BvhHit hit = walls_bvh_.first_hit(glm::dvec3(from + push * start_mm),
                                             glm::dvec3(from + push * reach_mm), Faces::both);
     if (!hit.hit()) continue;

@@ -148,6 +148,7 @@ TEST(BenchCommand, GeodesicAtItsSmallestReportsEveryRowAndFold) {
       ASSERT_TRUE(row.contains(key)) << key;
     EXPECT_EQ(row["mesh"], "phantom brain");
     EXPECT_EQ(row["bleed_geodesic"], 0) << "the geodesic falloff bleeds across a sulcus";
+    EXPECT_EQ(row["bleed_geodesic_with_walls"], 0) << "a 1 mm press moved a wall far along the phantom";
     EXPECT_GT(row["bleed_euclidean"].get<int>(), 0)
         << "the phantom's sulci should make the straight line bleed";
     EXPECT_LE(row["weight_error_max"].get<double>(), 0.1);

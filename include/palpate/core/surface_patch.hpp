@@ -82,6 +82,7 @@ class SurfacePatch {
  private:
   SurfacePatch(const Mesh& mesh, const PositionGroups& groups);
   std::uint32_t closest_triangle(glm::vec3 point_mm) const noexcept;
+  float clearance(std::uint32_t welded_vertex, std::vector<std::uint32_t>& stamps, std::uint32_t stamp) const;
   void march(std::int64_t triangle, glm::vec3 point_mm, float radius_mm) noexcept;
   void give_way(PushedDent dent) noexcept;
   void write_samples(glm::vec3 point_mm, float radius_mm) noexcept;
@@ -93,11 +94,12 @@ class SurfacePatch {
   std::vector<glm::vec4> samples_;
   std::vector<glm::vec3> gradient_sum_;  // per welded vertex, scratch
   Bvh walls_bvh_;                        // of welded_
-  std::vector<float> distance_mm_;       // per welded vertex: the sample's distance; +inf outside the patch
-  std::vector<float> push_mm_;           // per welded vertex, scratch: what the dent moves it by
-  std::vector<std::uint32_t> pending_;   // per welded vertex, scratch: a ring of vertices to cast from
-  std::vector<std::uint8_t> queued_;     // per welded vertex, scratch: whether it is in pending_
-  std::vector<std::uint32_t> patch_;     // welded vertices with a sample now
+  std::vector<float> clearance_mm_;  // per welded vertex: how near the nearest triangle beyond its two rings
+  std::vector<float> distance_mm_;   // per welded vertex: the sample's distance; +inf outside the patch
+  std::vector<float> push_mm_;       // per welded vertex, scratch: what the dent moves it by
+  std::vector<std::uint32_t> pending_;  // per welded vertex, scratch: a ring of vertices to cast from
+  std::vector<std::uint8_t> queued_;    // per welded vertex, scratch: whether it is in pending_
+  std::vector<std::uint32_t> patch_;    // welded vertices with a sample now
   std::size_t walls_ = 0;
   Range changed_;
   glm::vec3 contact_normal_{0.0f};
