@@ -227,6 +227,7 @@ void SurfacePatch::write_samples(glm::vec3 point_mm, float radius_mm) noexcept {
     if (!in_patch(v)) continue;
     for (const std::uint32_t t : field_.triangles_around(v)) {
       const std::uint32_t* c = &welded_.indices[3 * std::size_t(t)];
+      if (v != std::min({c[0], c[1], c[2]})) continue;  // each triangle once, from its first corner
       if (!in_patch(c[0]) || !in_patch(c[1]) || !in_patch(c[2])) continue;
       const glm::vec3 p0 = welded_.positions_mm[c[0]];
       const glm::vec3 e1 = welded_.positions_mm[c[1]] - p0, e2 = welded_.positions_mm[c[2]] - p0;
@@ -238,7 +239,7 @@ void SurfacePatch::write_samples(glm::vec3 point_mm, float radius_mm) noexcept {
       const glm::vec3 gradient =
           ((distance_mm_[c[1]] - d0) * glm::cross(e2, n) + (distance_mm_[c[2]] - d0) * glm::cross(n, e1)) /
           n2;
-      gradient_sum_[v] += gradient * std::sqrt(n2);
+      for (int k = 0; k < 3; ++k) gradient_sum_[c[k]] += gradient * std::sqrt(n2);
     }
   }
   std::size_t kept = 0;
