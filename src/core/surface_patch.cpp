@@ -152,8 +152,8 @@ void SurfacePatch::give_way(PushedDent dent) noexcept {
   if (glm::dot(push, push) == 0.0f) return;
   const float least_push = dent_gaussian(dent_cutoff_sigmas * dent.sigma_mm, dent.depth_mm, dent.sigma_mm);
   // The dent's vertices cast where they move by a tenth of p or more: the rays cost about 1 us each,
-  // and on the real cortices below a tenth they found no wall the others missed (folds at 2 sigma the
-  // same, a quarter less time).
+  // and below a tenth they found no wall the others missed on the real cortices (the same folds at
+  // 2 sigma).
   const float least_ray_push = 0.1f * dent.depth_mm;
   const std::size_t ring = pending_.size();
   std::size_t head = 0, count = 0;
@@ -183,6 +183,7 @@ void SurfacePatch::give_way(PushedDent dent) noexcept {
     enqueue(v);
   };
   constexpr float start_mm = 1.0e-3f;  // off the vertex's own triangles
+  // Each raise is lower than the push that caused it, so the walk ends; the bound only guards it.
   for (std::size_t steps = 0; count > 0 && steps < 16 * ring; ++steps) {
     const std::uint32_t y = pending_[head];
     head = (head + 1) % ring, --count;

@@ -53,7 +53,8 @@ class SurfacePatch {
   static constexpr float wall_gap_slope = 0.8f;
 
   // Copies what it needs of `mesh` (its positions and triangles, welded by position) and builds a BVH of
-  // it for the walls. Allocates.
+  // it for the walls, with each vertex's clearance (0.4-0.55 s for the 137,854 triangles of the Colin27
+  // brain on the development VM). Allocates.
   explicit SurfacePatch(const Mesh& mesh);
   SurfacePatch(const SurfacePatch&) = delete;  // its field refers to its own welded mesh
   SurfacePatch& operator=(const SurfacePatch&) = delete;
