@@ -65,37 +65,10 @@ float SurfacePatch::clearance(std::uint32_t welded_vertex, std::vector<std::uint
         stamps[u] = stamp;
     }
   }
-  const glm::vec3 p = welded_.positions_mm[welded_vertex];
-  const glm::dvec3 point(p);
-  float best2 = std::numeric_limits<float>::infinity();
-  const auto& nodes = walls_bvh_.nodes();
-  const auto box_distance2 = [&](const Bvh::Node& node) {
-    const glm::vec3 outside = glm::max(glm::max(node.min - p, p - node.max), glm::vec3(0.0f));
-    return glm::dot(outside, outside);
-  };
-  std::uint32_t stack[Bvh::max_depth + 2];  // one child of each node on the path waits, and two at the end
-  std::size_t top = 0;
-  if (nodes.empty()) return best2;
-  stack[top++] = 0;
-  while (top > 0) {
-    const Bvh::Node& node = nodes[stack[--top]];
-    if (box_distance2(node) >= best2) continue;
-    if (node.count == 0) {  // the nearer child on top
-      const bool left_nearer = box_distance2(nodes[node.first]) <= box_distance2(nodes[node.first + 1]);
-      stack[top++] = left_nearer ? node.first + 1 : node.first;
-      stack[top++] = left_nearer ? node.first : node.first + 1;
-      continue;
-    }
-    for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
-      const Bvh::Triangle& triangle = walls_bvh_.triangle(i);
-      if (stamps[triangle.id] == stamp) continue;
-      const glm::dvec3 q =
-          closest_point_on_triangle(point, glm::dvec3(triangle.vertices[0]), glm::dvec3(triangle.vertices[1]),
-                                    glm::dvec3(triangle.vertices[2]));
-      best2 = std::min(best2, float(glm::dot(q - point, q - point)));
-    }
-  }
-  return std::sqrt(best2);
+  const BvhHit nearest = walls_bvh_.closest_point_where(
+      glm::dvec3(welded_.positions_mm[welded_vertex]), std::numeric_limits<double>::infinity(),
+      [&](std::uint32_t primitive) { return stamps[walls_bvh_.triangle(primitive).id] != stamp; });
+  return nearest.hit() ? nearest.distance_mm : std::numeric_limits<float>::infinity();
 }
 
 std::uint32_t SurfacePatch::closest_triangle(glm::vec3 point_mm) const noexcept {

@@ -13,6 +13,7 @@
 #include <array>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <glm/vec3.hpp>
 #include <span>
 #include <vector>
@@ -100,6 +101,10 @@ class Bvh {
   // The closest point on any triangle of the `seen` objects to `point` no farther than
   // `max_distance_mm`, or no hit.
   BvhHit closest_point(const glm::dvec3& point, double max_distance_mm, ObjectMask seen = {}) const noexcept;
+  // The same among the triangles `accepted` takes (by BVH index), asked only of a triangle that would be
+  // the answer: for searches that leave some triangles out (not per tick: it calls through a function).
+  BvhHit closest_point_where(const glm::dvec3& point, double max_distance_mm,
+                             const std::function<bool(std::uint32_t primitive)>& accepted) const;
 
   // Among the triangles of the `seen` objects that pass within `radius_mm` of `around`, the point
   // nearest `point`, or no hit: what a proxy resting at `around` could reach by sliding onto one of the
@@ -129,6 +134,9 @@ class Bvh {
   };
 
   BvhHit make_hit(std::uint32_t primitive, const glm::dvec3& point) const noexcept;
+  template <class Accepted>
+  BvhHit closest_point_if(const glm::dvec3& point, double max_distance_mm,
+                          const Accepted& accepted) const noexcept;
 
   std::vector<Node> nodes_;
   std::vector<Triangle> triangles_;
