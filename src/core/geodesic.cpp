@@ -15,29 +15,32 @@ namespace {
 
 constexpr float infinity = std::numeric_limits<float>::infinity();
 
-// The front's arrival at C in a plane where it is known at A (da) and B (db): from the source S that
-// is da from A and db from B on the far side of AB, straight to C when that line crosses AB between
-// A and B (then `source_out`, where given, gets S); else along an edge. Exact for a point source in the
-// plane; the edge paths bound it from above.
-float planar_update(glm::vec2 a, float da, glm::vec2 b, float db, glm::vec2 c,
-                    glm::vec2* source_out = nullptr) {
-  const float along_edges = std::min(da + glm::distance(a, c), db + glm::distance(b, c));
-  const glm::vec2 edge = b - a;
-  const float length = glm::length(edge);
+// The front's arrival at C in a plane where it is known at A (da) and B (db), with A at the origin, B at
+// (length, 0) and C at `c` (c.y >= 0), `ac` and `bc` from A and B: from the source S that is da from A and
+// db from B below AB, straight to C when that line crosses AB between A and B (then `source_out`, where
+// given, gets S); else along an edge. Exact for a point source in the plane; the edge paths bound it from
+// above.
+float planar_update_on_edge(float length, float da, float db, glm::vec2 c, float ac, float bc,
+                            glm::vec2* source_out = nullptr) {
+  const float along_edges = std::min(da + ac, db + bc);
   if (!(length > 0.0f)) return along_edges;
-  const glm::vec2 u = edge / length, n(-u.y, u.x);
-  const float side = glm::dot(c - a, n) >= 0.0f ? 1.0f : -1.0f;
   const float sx = (da * da - db * db + length * length) / (2.0f * length);
   const float sy2 = da * da - sx * sx;
   if (sy2 < 0.0f) return along_edges;  // no source makes both distances: the front is not planar here
-  const glm::vec2 source = a + u * sx - n * (side * std::sqrt(sy2));
-  const float source_height = glm::dot(source - a, n), c_height = glm::dot(c - a, n);
-  if (!(source_height * c_height < 0.0f)) return along_edges;
-  const glm::vec2 crossing = source + (c - source) * (source_height / (source_height - c_height));
-  const float x = glm::dot(crossing - a, u);
+  const float sy = std::sqrt(sy2);
+  if (!(sy > 0.0f && c.y > 0.0f)) return along_edges;
+  const float x = sx + (c.x - sx) * (sy / (sy + c.y));
   if (x < 0.0f || x > length) return along_edges;
-  if (source_out) *source_out = source;
-  return std::min(glm::distance(source, c), along_edges);
+  if (source_out) *source_out = {sx, -sy};
+  return std::min(std::sqrt((c.x - sx) * (c.x - sx) + (c.y + sy) * (c.y + sy)), along_edges);
+}
+
+// The same for A, B and C anywhere in the plane, the source on the far side of AB from C.
+float planar_update(glm::vec2 a, float da, glm::vec2 b, float db, glm::vec2 c) {
+  const float length = glm::distance(a, b);
+  const glm::vec2 u = length > 0.0f ? (b - a) / length : glm::vec2(1.0f, 0.0f), n(-u.y, u.x);
+  return planar_update_on_edge(length, da, db, {glm::dot(c - a, u), std::abs(glm::dot(c - a, n))},
+                               glm::distance(a, c), glm::distance(b, c));
 }
 
 // Where p lies in the plane with a at the origin and b on the +x axis, on the side `side` (+1: +y).
@@ -83,6 +86,17 @@ GeodesicField::GeodesicField(const Mesh& mesh) : mesh_(mesh) {
     i = j;
   }
 
+  layout_.resize(mesh.indices.size());
+  for (std::size_t t = 0; t < triangles; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec3 pa = mesh.positions_mm[mesh.indices[3 * t + (k + 1) % 3]],
+                      pb = mesh.positions_mm[mesh.indices[3 * t + (k + 2) % 3]];
+      const float length = glm::distance(pa, pb);
+      layout_[3 * t + k] = {length, length > 0.0f
+                                        ? in_plane(pa, pb, mesh.positions_mm[mesh.indices[3 * t + k]], 1.0f)
+                                        : glm::vec2(0.0f)};
+    }
+  }
   distance_.assign(vertices, infinity);
   lowered_.assign(vertices, 0);
   along_edge_.assign(vertices, 0);
@@ -179,7 +193,7 @@ void GeodesicField::correct_along_edge_arrivals() {
       const int k = corners[0] == v ? 0 : corners[1] == v ? 1 : 2;
       const std::uint32_t a = corners[(k + 1) % 3], b = corners[(k + 2) % 3];
       if (!alive_[a] || !alive_[b]) continue;
-      const float d = unfolded_update(v, a, b, t);
+      const float d = unfolded_update(t, k);
       if (!(d < distance_[v])) continue;
       lowered_[v] |= d < distance_[v] * (1.0f - 1e-3f);  // by 0.1%: smaller changes are not carried on
       distance_[v] = d;
@@ -191,11 +205,11 @@ void GeodesicField::update(std::uint32_t c, std::uint32_t triangle) {
   const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(triangle)];
   const int k = corners[0] == c ? 0 : corners[1] == c ? 1 : 2;
   const std::uint32_t a = corners[(k + 1) % 3], b = corners[(k + 2) % 3];
-  const glm::vec3 pc = mesh_.positions_mm[c];
+  const Layout* layout = &layout_[3 * std::size_t(triangle)];
   float along_edge = infinity;
-  if (alive_[a]) along_edge = std::min(along_edge, distance_[a] + glm::distance(mesh_.positions_mm[a], pc));
-  if (alive_[b]) along_edge = std::min(along_edge, distance_[b] + glm::distance(mesh_.positions_mm[b], pc));
-  const float through = alive_[a] && alive_[b] ? unfolded_update(c, a, b, triangle) : infinity;
+  if (alive_[a]) along_edge = std::min(along_edge, distance_[a] + layout[(k + 2) % 3].edge_mm);
+  if (alive_[b]) along_edge = std::min(along_edge, distance_[b] + layout[(k + 1) % 3].edge_mm);
+  const float through = alive_[a] && alive_[b] ? unfolded_update(triangle, k) : infinity;
   push_or_lower(c, std::min(along_edge, through), !(through < along_edge));
 }
 
@@ -208,17 +222,23 @@ void GeodesicField::update(std::uint32_t c, std::uint32_t triangle) {
 // no margin the error grew fourfold); on Colin27 the contacts whose weight error passes 0.03 of p fell
 // from 2 / 4 / 3 in 60 to 1 / 2 / 1 at sigma 2 / 4 / 8 mm (docs/design.md). It costs about 7% of the
 // march, checked only where the update would lower the vertex.
-float GeodesicField::unless_a_false_source(std::uint32_t a, std::uint32_t b, std::uint32_t triangle,
-                                           glm::vec2 source, glm::vec2 c2, float distance) const {
-  const Across beyond = across(triangle, a, b);
-  if (beyond.triangle < 0) return distance;
-  const std::uint32_t x = beyond.corner;
+float GeodesicField::unless_a_false_source(std::uint32_t triangle, int k, glm::vec2 source, glm::vec2 c2,
+                                           float distance) const {
+  const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(triangle)];
+  const std::uint32_t a = corners[(k + 1) % 3], b = corners[(k + 2) % 3];
+  const std::int32_t beyond = across_[3 * std::size_t(triangle) + (k + 1) % 3];  // the edge from a to b
+  if (beyond < 0) return distance;
+  const std::uint32_t* far = &mesh_.indices[3 * std::size_t(beyond)];
+  const int j = far[0] != a && far[0] != b ? 0 : far[1] != a && far[1] != b ? 1 : 2;
+  const std::uint32_t x = far[j];
   if (!alive_[x]) return distance;
-  const glm::vec3 pa = mesh_.positions_mm[a], pb = mesh_.positions_mm[b];
-  const glm::vec2 a2(0.0f), b2(glm::distance(pa, pb), 0.0f),
-      x2 = in_plane(pa, pb, mesh_.positions_mm[x], -1.0f);
+  // x as laid out in its own triangle, over the same edge from a to b or from b to a, mirrored below it.
+  const Layout& at_x = layout_[3 * std::size_t(beyond) + j];
+  const glm::vec2 a2(0.0f), b2(layout_[3 * std::size_t(triangle) + k].edge_mm, 0.0f),
+      x2 = far[(j + 1) % 3] == a ? glm::vec2(at_x.corner.x, -at_x.corner.y)
+                                 : glm::vec2(b2.x - at_x.corner.x, -at_x.corner.y);
   if (!(distance_[x] > glm::distance(source, x2) * 1.02f)) return distance;
-  return std::min({distance_[a] + glm::distance(a2, c2), distance_[b] + glm::distance(b2, c2),
+  return std::min({distance_[a] + glm::length(c2), distance_[b] + glm::distance(b2, c2),
                    planar_update(a2, distance_[a], x2, distance_[x], c2),
                    planar_update(x2, distance_[x], b2, distance_[b], c2)});
 }
@@ -240,16 +260,18 @@ GeodesicField::Across GeodesicField::across(std::uint32_t triangle, std::uint32_
 // Sethian's unfolding: the triangles across ab are laid into the plane, one after another, until a corner d'
 // splits the corner at c into two acute ones; the front then arrives at c from (a, d') and (d', b), through
 // the strip, not along an edge. Up to `max_unfoldings` triangles.
-float GeodesicField::unfolded_update(std::uint32_t c, std::uint32_t a, std::uint32_t b,
-                                     std::uint32_t triangle) const {
+float GeodesicField::unfolded_update(std::uint32_t triangle, int k) const {
   constexpr int max_unfoldings = 6;
-  const glm::vec3 pa = mesh_.positions_mm[a], pb = mesh_.positions_mm[b], pc = mesh_.positions_mm[c];
-  const glm::vec2 a2(0.0f), b2(glm::distance(pa, pb), 0.0f), c2 = in_plane(pa, pb, pc, 1.0f);
+  const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(triangle)];
+  const std::uint32_t c = corners[k], a = corners[(k + 1) % 3], b = corners[(k + 2) % 3];
+  const Layout* layout = &layout_[3 * std::size_t(triangle)];
+  const glm::vec2 a2(0.0f), b2(layout[k].edge_mm, 0.0f), c2 = layout[k].corner;
   glm::vec2 source(std::numeric_limits<float>::quiet_NaN());
-  float best = planar_update(a2, distance_[a], b2, distance_[b], c2, &source);
+  float best = planar_update_on_edge(layout[k].edge_mm, distance_[a], distance_[b], c2,
+                                     layout[(k + 2) % 3].edge_mm, layout[(k + 1) % 3].edge_mm, &source);
   if (source.x == source.x && best < distance_[c])  // else it changes nothing: spare the check
-    best = unless_a_false_source(a, b, triangle, source, c2, best);
-  if (glm::dot(pa - pc, pb - pc) >= 0.0f) return best;  // not obtuse at c
+    best = unless_a_false_source(triangle, k, source, c2, best);
+  if (glm::dot(a2 - c2, b2 - c2) >= 0.0f) return best;  // not obtuse at c
 
   // The strip: the edge (p, q) just crossed, laid out at (p2, q2), the triangle beyond it, and the
   // point of the last triangle off that edge (to put the next one on the other side).

@@ -51,9 +51,10 @@ class GeodesicField {
   Across across(std::uint32_t triangle, std::uint32_t p, std::uint32_t q) const;
   void update(std::uint32_t vertex, std::uint32_t triangle);
   void correct_along_edge_arrivals();
-  float unfolded_update(std::uint32_t c, std::uint32_t a, std::uint32_t b, std::uint32_t triangle) const;
-  float unless_a_false_source(std::uint32_t a, std::uint32_t b, std::uint32_t triangle, glm::vec2 source,
-                              glm::vec2 c2, float distance) const;
+  // The update of the triangle's corner k (0-2) from the other two.
+  float unfolded_update(std::uint32_t triangle, int k) const;
+  float unless_a_false_source(std::uint32_t triangle, int k, glm::vec2 source, glm::vec2 c2,
+                              float distance) const;
   void push_or_lower(std::uint32_t vertex, float distance, bool along_edge);
   std::uint32_t pop();
   void sift_up(std::size_t at);
@@ -61,6 +62,14 @@ class GeodesicField {
 
   const Mesh& mesh_;
   std::vector<std::uint32_t> first_triangle_, vertex_triangles_;  // the triangles around each vertex
+  // Corner k of triangle t laid out over the edge across from it: the next corner at the origin, the one
+  // after at (edge_mm, 0), corner k at `corner` (y >= 0). Laid out once, so the march reads these instead
+  // of taking square roots of the positions.
+  struct Layout {
+    float edge_mm;
+    glm::vec2 corner;
+  };
+  std::vector<Layout> layout_;        // layout_[3t + k]
   std::vector<std::int32_t> across_;  // across_[3t + e]: the triangle beyond edge e (corners e, e+1) of t
   std::vector<float> distance_;
   std::vector<std::uint8_t> alive_;
