@@ -6,12 +6,12 @@
 // Fast marching on the triangles (Kimmel and Sethian, 1998): the front leaves the contact triangle's
 // three corners with their in-plane distances and crosses each triangle from the virtual point source
 // that its two known corners place in its plane; at an obtuse corner the neighbouring triangle is
-// unfolded into the plane, so the front is not forced along edges there. A vertex the front still
-// reached along an edge is updated again once its later neighbours are known, and a triangle whose
-// corners the front reached from either side of a saddle vertex or a fold (its source proves false) is
-// crossed through its neighbour instead. Written here: no Debian library marches on a triangle mesh
-// with a workspace reused per frame (CGAL's exact shortest paths serve as the test's reference: exact,
-// but far too slow per frame).
+// unfolded into the plane, so the front is not forced along edges there. A triangle whose corners the
+// front reached from either side of a saddle vertex or a fold (its source proves false) is crossed
+// through its neighbour instead. Once all are known, a vertex the front still reached along an edge is
+// updated again, and one whose source could not be checked then is computed afresh. Written here: no Debian
+// library marches on a triangle mesh with a workspace reused per frame (CGAL's exact shortest paths serve as
+// the test's reference: exact, but far too slow per frame).
 #include <cstdint>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -32,7 +32,8 @@ class GeodesicField {
   void compute(std::uint32_t triangle, glm::vec3 point_mm, float radius_mm);
 
   // The vertices within the radius, from the last compute(), in the order the front reached them
-  // (nearest first but for the vertices corrected afterwards, lowered by a few percent).
+  // (nearest first but for the vertices corrected afterwards, moved by a few percent, rarely past the
+  // radius).
   std::span<const std::uint32_t> reached() const noexcept { return reached_; }
   // A vertex's distance along the surface from the last compute(); +infinity beyond the radius.
   float distance_mm(std::uint32_t vertex) const noexcept;
@@ -50,11 +51,13 @@ class GeodesicField {
   };
   Across across(std::uint32_t triangle, std::uint32_t p, std::uint32_t q) const;
   void update(std::uint32_t vertex, std::uint32_t triangle);
-  void correct_along_edge_arrivals();
+  void correct();
+  float update_again(std::uint32_t vertex);
   // The update of the triangle's corner k (0-2) from the other two.
-  float unfolded_update(std::uint32_t triangle, int k) const;
-  float unless_a_false_source(std::uint32_t triangle, int k, glm::vec2 source, glm::vec2 c2,
-                              float distance) const;
+  // `unchecked`, where given, is set where the source could not be checked (see unless_a_false_source).
+  float unfolded_update(std::uint32_t triangle, int k, bool* unchecked = nullptr) const;
+  float unless_a_false_source(std::uint32_t triangle, int k, glm::vec2 source, glm::vec2 c2, float distance,
+                              bool* unchecked) const;
   void push_or_lower(std::uint32_t vertex, float distance, bool along_edge);
   std::uint32_t pop();
   void sift_up(std::size_t at);
@@ -74,7 +77,9 @@ class GeodesicField {
   std::vector<float> distance_;
   std::vector<std::uint8_t> alive_;
   std::vector<std::uint8_t> along_edge_;  // the vertex's distance came along an edge, not through a triangle
-  std::vector<std::uint8_t> lowered_;     // scratch of correct_along_edge_arrivals()
+  std::vector<std::uint8_t> unchecked_;   // its source could not be checked: computed afresh by correct()
+  std::vector<std::uint8_t> queued_;      // correct(): 1 next to a vertex it lowered, 2 in queue_ besides
+  std::vector<std::uint32_t> queue_;
   std::vector<std::int32_t> heap_position_;  // -1: not in the heap
   std::vector<std::uint32_t> heap_, touched_, reached_;
 };
