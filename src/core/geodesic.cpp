@@ -167,7 +167,7 @@ void GeodesicField::compute(std::uint32_t triangle, glm::vec3 point_mm, float ra
 // alone brought the largest weight error from 0.038 to 0.022 of p on the Colin27 brain at sigma 2 mm and
 // from 0.15 to 0.018 on the coarse SPM12 cortex; the fresh look at unchecked sources and the queue then
 // cut the contacts over 0.03 of p from 9 to 7 (Colin27: 0.047 to 0.028 at sigma 2 mm, 0.041 to 0.032
-// at sigma 4 mm), for 8% of the march (docs/design.md).
+// at sigma 4 mm), for 8-15% of the march (docs/design.md).
 void GeodesicField::correct() {
   std::size_t head = 0, count = 0;
   const auto enqueue_neighbours = [&](std::uint32_t v) {
