@@ -211,23 +211,29 @@ float GeodesicField::update_again(std::uint32_t v) {
   for (const std::uint32_t t : triangles_around(v)) {
     const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(t)];
     const int k = corners[0] == v ? 0 : corners[1] == v ? 1 : 2;
-    const std::uint32_t a = corners[(k + 1) % 3], b = corners[(k + 2) % 3];
-    const Layout* layout = &layout_[3 * std::size_t(t)];
-    if (alive_[a]) best = std::min(best, distance_[a] + layout[(k + 2) % 3].edge_mm);
-    if (alive_[b]) best = std::min(best, distance_[b] + layout[(k + 1) % 3].edge_mm);
-    if (alive_[a] && alive_[b]) best = std::min(best, unfolded_update(t, k));
+    best = std::min(best, along_edges(t, k));
+    if (alive_[corners[(k + 1) % 3]] && alive_[corners[(k + 2) % 3]])
+      best = std::min(best, unfolded_update(t, k));
   }
   return distance_[v] = best;
+}
+
+// The arrival at the triangle's corner k along an edge from one of the other two that is fixed.
+float GeodesicField::along_edges(std::uint32_t triangle, int k) const {
+  const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(triangle)];
+  const std::uint32_t a = corners[(k + 1) % 3], b = corners[(k + 2) % 3];
+  const Layout* layout = &layout_[3 * std::size_t(triangle)];
+  float along = infinity;
+  if (alive_[a]) along = std::min(along, distance_[a] + layout[(k + 2) % 3].edge_mm);
+  if (alive_[b]) along = std::min(along, distance_[b] + layout[(k + 1) % 3].edge_mm);
+  return along;
 }
 
 void GeodesicField::update(std::uint32_t c, std::uint32_t triangle) {
   const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(triangle)];
   const int k = corners[0] == c ? 0 : corners[1] == c ? 1 : 2;
   const std::uint32_t a = corners[(k + 1) % 3], b = corners[(k + 2) % 3];
-  const Layout* layout = &layout_[3 * std::size_t(triangle)];
-  float along_edge = infinity;
-  if (alive_[a]) along_edge = std::min(along_edge, distance_[a] + layout[(k + 2) % 3].edge_mm);
-  if (alive_[b]) along_edge = std::min(along_edge, distance_[b] + layout[(k + 1) % 3].edge_mm);
+  const float along_edge = along_edges(triangle, k);
   bool unchecked = false;
   const float through = alive_[a] && alive_[b] ? unfolded_update(triangle, k, &unchecked) : infinity;
   if (std::min(along_edge, through) < distance_[c]) unchecked_[c] = unchecked && through < along_edge;

@@ -53,6 +53,7 @@ class GeodesicField {
   void update(std::uint32_t vertex, std::uint32_t triangle);
   void correct();
   float update_again(std::uint32_t vertex);
+  float along_edges(std::uint32_t triangle, int k) const;
   // The update of the triangle's corner k (0-2) from the other two.
   // `unchecked`, where given, is set where the source could not be checked (see unless_a_false_source).
   float unfolded_update(std::uint32_t triangle, int k, bool* unchecked = nullptr) const;
