@@ -3,9 +3,10 @@
 // surfaces of ../shared/data when present) and sigma 2, 4 and 8 mm, over the same random contacts:
 // bleed (vertices moved by more than 5% of p that lie more than 3 sigma away along the surface; by the
 // falloff alone, and with the walls behind the dent giving way), the weight error against CGAL's exact
-// shortest paths (on the first few contacts: seconds each), the cost of the distance update and of its
-// upload, and the frame time against the straight-line path; then folds (triangles that pass through others
-// or turn over) for presses of depth sigma, 2 and 3 sigma.
+// shortest paths (on the first few contacts: seconds each), the cost of the distance alone, of the
+// renderer's update (the distance and the walls giving way) and of its upload, and the frame time against the
+// straight-line path; then folds (triangles that pass through others or turn over) for presses of depth
+// sigma, 2 and 3 sigma.
 #include <epoxy/gl.h>
 
 #include <algorithm>
@@ -261,9 +262,9 @@ int bench_geodesic(const GeodesicOptions& options) {
   std::printf(
       "\n| mesh | vertices | sigma mm | contacts | bleed straight | bleed geodesic | with walls given way | "
       "weight error mean / "
-      "max (exact, %zu contacts) | contacts over 0.03 | update ms p50 / p99 | upload ms p50 / p99 | patch "
-      "vertices p50 | "
-      "frame overhead |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
+      "max (exact, %zu contacts) | contacts over 0.03 | distance ms p50 / p99 | with walls ms p50 / p99 | "
+      "upload ms p50 / p99 | patch vertices p50 | "
+      "frame overhead |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n",
       exact_contacts);
   std::vector<Surface> all = surfaces(options);
   for (const Surface& surface : all) {
@@ -283,19 +284,35 @@ int bench_geodesic(const GeodesicOptions& options) {
     for (const float sigma : sigmas) {
       std::fprintf(stderr, "bench geodesic: %s, sigma %.0f mm\n", surface.name.c_str(), sigma);
       std::size_t bleed_straight = 0, bleed_along = 0, bleed_walls = 0;
-      std::vector<double> update_ms, upload_ms, patch_vertices;
+      std::vector<double> march_ms, update_ms, upload_ms, patch_vertices;
       double error_sum = 0.0, error_max = 0.0;
       std::size_t over_target = 0;  // contacts whose largest weight error passes issue 14's 0.03 of p
       for (std::size_t i = 0; i < sites.size(); ++i) {
         const ContactSite& site = sites[i];
-        // The renderer's update for the bleed's press of 1 mm: the march, and the walls giving way.
-        Clock::time_point start = Clock::now();
-        patch.compute(site.triangle, site.point_mm, SurfacePatch::PushedDent{bleed_depth_mm, sigma});
-        update_ms.push_back(milliseconds_since(start));
+        // The distance alone (the march) and the renderer's update for the bleed's press of 1 mm (the
+        // march, and the walls giving way), each first as often; the update's samples are uploaded.
+        const auto update = [&] {
+          const Clock::time_point start = Clock::now();
+          patch.compute(site.triangle, site.point_mm, SurfacePatch::PushedDent{bleed_depth_mm, sigma});
+          update_ms.push_back(milliseconds_since(start));
+        };
+        const auto march = [&] {
+          const Clock::time_point start = Clock::now();
+          patch.compute(site.triangle, site.point_mm, dent_cutoff_sigmas * sigma);
+          march_ms.push_back(milliseconds_since(start));
+        };
+        if (i % 2 == 0) {
+          march();
+          update();
+        } else {
+          update();
+          march();
+          patch.compute(site.triangle, site.point_mm, SurfacePatch::PushedDent{bleed_depth_mm, sigma});
+        }
         patch_vertices.push_back(double(patch.size()));
         const SurfacePatch::Range changed = patch.changed();
         glFinish();
-        start = Clock::now();
+        const Clock::time_point start = Clock::now();
         glNamedBufferSubData(samples_buffer, GLintptr(changed.first * sizeof(glm::vec4)),
                              GLsizeiptr(changed.count * sizeof(glm::vec4)),
                              patch.samples().data() + changed.first);
@@ -344,14 +361,16 @@ int bench_geodesic(const GeodesicOptions& options) {
       const FrameTimes times = time_frames(mesh, sigma, sites, frames, target);
       const double overhead = (median(times.along) / median(times.straight) - 1.0) * 100.0;
       const double error_mean = error_sum / double(std::min(exact_contacts, sites.size()));
-      const Percentiles update = percentiles(update_ms), upload = percentiles(upload_ms);
+      const Percentiles distance = percentiles(march_ms), update = percentiles(update_ms),
+                        upload = percentiles(upload_ms);
       std::printf(
-          "| %s | %s | %.0f | %zu | %s | %s | %s | %.4f / %.3f | %zu | %.3f / %.3f | %.3f / %.3f | %.0f | "
-          "%+.1f%% |\n",
+          "| %s | %s | %.0f | %zu | %s | %s | %s | %.4f / %.3f | %zu | %.3f / %.3f | %.3f / %.3f | %.3f / "
+          "%.3f | "
+          "%.0f | %+.1f%% |\n",
           surface.name.c_str(), with_thousands(mesh.vertex_count()).c_str(), sigma, sites.size(),
           with_thousands(bleed_straight).c_str(), with_thousands(bleed_along).c_str(),
-          with_thousands(bleed_walls).c_str(), error_mean, error_max, over_target, update.p50, update.p99,
-          upload.p50, upload.p99, median(patch_vertices), overhead);
+          with_thousands(bleed_walls).c_str(), error_mean, error_max, over_target, distance.p50, distance.p99,
+          update.p50, update.p99, upload.p50, upload.p99, median(patch_vertices), overhead);
       std::fflush(stdout);
       report["rows"].push_back(
           {{"mesh", surface.name},
@@ -365,6 +384,7 @@ int bench_geodesic(const GeodesicOptions& options) {
            {"weight_error_max", error_max},
            {"exact_contacts", std::min(exact_contacts, sites.size())},
            {"weight_error_contacts_over_0_03", over_target},
+           {"distance_ms", p50_p99(march_ms)},
            {"update_ms", p50_p99(update_ms)},
            {"upload_ms", p50_p99(upload_ms)},
            {"patch_vertices_p50", median(patch_vertices)},

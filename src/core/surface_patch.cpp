@@ -16,12 +16,24 @@ SurfacePatch::SurfacePatch(const Mesh& mesh, const PositionGroups& groups)
   alone.objects.push_back({"surface patch", welded_, glm::mat4(1.0f), Material{}, {}});
   walls_bvh_ = Bvh::build(alone);
   std::vector<std::uint32_t> stamps(welded_.triangle_count(), 0);
-  clearance_mm_.resize(groups.count);
-  for (std::uint32_t v = 0; v < groups.count; ++v) clearance_mm_[v] = clearance(v, stamps, v + 1);
+  std::vector<float> vertex_clearance_mm(groups.count);
+  for (std::uint32_t v = 0; v < groups.count; ++v) vertex_clearance_mm[v] = clearance(v, stamps, v + 1);
+  // A point of a triangle lies within its longest edge over sqrt(3) of a corner (the equilateral's
+  // centre is the worst case).
+  clearance_mm_.resize(welded_.triangle_count());
+  for (std::size_t t = 0; t < clearance_mm_.size(); ++t) {
+    const std::uint32_t* c = &welded_.indices[3 * t];
+    const glm::vec3 p0 = welded_.positions_mm[c[0]], p1 = welded_.positions_mm[c[1]],
+                    p2 = welded_.positions_mm[c[2]];
+    clearance_mm_[t] =
+        std::min({vertex_clearance_mm[c[0]], vertex_clearance_mm[c[1]], vertex_clearance_mm[c[2]]}) -
+        std::max({glm::distance(p0, p1), glm::distance(p1, p2), glm::distance(p2, p0)}) / std::sqrt(3.0f);
+  }
   distance_mm_.assign(groups.count, std::numeric_limits<float>::infinity());
   push_mm_.assign(groups.count, 0.0f);
   pending_.assign(groups.count, 0);
   queued_.assign(groups.count, 0);
+  unsettled_.assign(welded_.triangle_count(), 0);
   first_copy_.assign(groups.count + 1, 0);
   for (const std::uint32_t g : groups.group) ++first_copy_[g + 1];
   for (std::size_t g = 0; g < groups.count; ++g) first_copy_[g + 1] += first_copy_[g];
@@ -48,6 +60,7 @@ void SurfacePatch::clear() noexcept {
   for (const std::uint32_t w : patch_) {
     write(w, no_surface_sample);
     distance_mm_[w] = std::numeric_limits<float>::infinity();
+    push_mm_[w] = 0.0f;  // a corner outside the next patch pushes nothing
   }
   patch_.clear();
   walls_ = 0;
@@ -94,7 +107,7 @@ void SurfacePatch::compute(std::int64_t triangle, glm::vec3 point_mm, float radi
 void SurfacePatch::compute(std::int64_t triangle, glm::vec3 point_mm, PushedDent dent) noexcept {
   const float radius_mm = dent_cutoff_sigmas * dent.sigma_mm;
   march(triangle, point_mm, radius_mm);
-  if (dent.depth_mm > 0.0f && dent.sigma_mm > 0.0f) give_way(dent);
+  if (dent.depth_mm > 0.0f && dent.sigma_mm > 0.0f) give_way(point_mm, dent);
   write_samples(point_mm, radius_mm);
 }
 
@@ -116,46 +129,156 @@ void SurfacePatch::march(std::int64_t triangle, glm::vec3 point_mm, float radius
   }
 }
 
-// Written here, not found in a library: the walls are those of the one surface the march runs on. Each
-// vertex the dent moves casts a ray along the push as far as the wall it could reach (G / 0.8); the
-// corners of the triangle it hits move at least G - 0.8 t, drag their neighbours along and cast in
-// turn. A ring of pending vertices, each in it at most once, so that nothing allocates.
-void SurfacePatch::give_way(PushedDent dent) noexcept {
-  const glm::vec3 push = -contact_normal_;
-  if (glm::dot(push, push) == 0.0f) return;
+namespace {
+
+float cross2(glm::vec2 a, glm::vec2 b) {
+  return a.x * b.y - a.y * b.x;
+}
+
+// Barycentric coordinates of x in the plane triangle (a, b, c), or none (x.z < 0) when it is flat.
+glm::vec3 barycentric(glm::vec2 x, glm::vec2 a, glm::vec2 b, glm::vec2 c) {
+  const float area = cross2(b - a, c - a);
+  if (!(std::abs(area) > 1e-12f)) return glm::vec3(-1.0f);
+  const float lb = cross2(x - a, c - a) / area, lc = cross2(b - a, x - a) / area;
+  return {1.0f - lb - lc, lb, lc};
+}
+
+}  // namespace
+
+// The least push every corner of `wall` needs so that the triangle `front`, pushed, keeps a fifth of its
+// gap to it wherever it lies behind `front` along the push. Pushed one way, the two can only meet on a
+// line along the push, and over the overlap of their outlines seen along it the gap between them is
+// linear: it is enough to keep it at the overlap's corners (a corner of one inside the other, or two
+// edges crossing). -inf where the outlines do not overlap or `wall` is not behind.
+float SurfacePatch::least_wall_push(const Corners& front, const Corners& wall) const noexcept {
+  struct Meeting {
+    float front_depth, front_push, wall_depth;
+  };
+  Meeting meetings[15];
+  int count = 0;
+  const auto dot3 = [](glm::vec3 weights, const float* values) {
+    return weights.x * values[0] + weights.y * values[1] + weights.z * values[2];
+  };
+  for (int k = 0; k < 3; ++k) {
+    const glm::vec3 in_wall =
+        barycentric(front.outline[k], wall.outline[0], wall.outline[1], wall.outline[2]);
+    if (glm::all(glm::greaterThanEqual(in_wall, glm::vec3(0.0f))))
+      meetings[count++] = {front.depth[k], front.push[k], dot3(in_wall, wall.depth)};
+    const glm::vec3 in_front =
+        barycentric(wall.outline[k], front.outline[0], front.outline[1], front.outline[2]);
+    if (glm::all(glm::greaterThanEqual(in_front, glm::vec3(0.0f))))
+      meetings[count++] = {dot3(in_front, front.depth), dot3(in_front, front.push), wall.depth[k]};
+  }
+  for (int i = 0; i < 3; ++i) {
+    const int i2 = (i + 1) % 3;
+    const glm::vec2 p = front.outline[i], along_p = front.outline[i2] - p;
+    for (int j = 0; j < 3; ++j) {
+      const int j2 = (j + 1) % 3;
+      const glm::vec2 q = wall.outline[j], along_q = wall.outline[j2] - q;
+      const float den = cross2(along_p, along_q);
+      if (den == 0.0f) continue;
+      const float a = cross2(q - p, along_q) / den, b = cross2(q - p, along_p) / den;
+      if (a < 0.0f || a > 1.0f || b < 0.0f || b > 1.0f) continue;
+      meetings[count++] = {front.depth[i] + a * (front.depth[i2] - front.depth[i]),
+                           front.push[i] + a * (front.push[i2] - front.push[i]),
+                           wall.depth[j] + b * (wall.depth[j2] - wall.depth[j])};
+    }
+  }
+  float least = -std::numeric_limits<float>::infinity();
+  for (int m = 0; m < count; ++m) {
+    const float gap = meetings[m].wall_depth - meetings[m].front_depth;
+    if (gap <= 0.0f) return -std::numeric_limits<float>::infinity();  // not behind
+    least = std::max(least, meetings[m].front_push - wall_gap_slope * gap);
+  }
+  return least;
+}
+
+// How much of a triangle's normal the pushed triangle keeps, 1 + push . grad(push), and each corner's
+// share of the gradient (`along`, per mm of push); 0 shares for a triangle without area.
+void SurfacePatch::upright_share(const Corners& c, const Frame& frame, float along[3],
+                                 float& upright) const noexcept {
+  const glm::vec3 p0 = welded_.positions_mm[c.vertex[0]], p1 = welded_.positions_mm[c.vertex[1]],
+                  p2 = welded_.positions_mm[c.vertex[2]];
+  const glm::vec3 normal = glm::cross(p1 - p0, p2 - p0);
+  const float normal2 = glm::dot(normal, normal);
+  const glm::vec3 edges[3] = {p2 - p1, p0 - p2, p1 - p0};
+  upright = 1.0f;
+  for (int k = 0; k < 3; ++k) {
+    along[k] = normal2 > 0.0f ? glm::dot(frame.push, glm::cross(normal, edges[k])) / normal2 : 0.0f;
+    upright += along[k] * c.push[k];
+  }
+}
+
+SurfacePatch::Corners SurfacePatch::corners_of(std::uint32_t triangle, const Frame& frame) const noexcept {
+  Corners corners;
+  for (int k = 0; k < 3; ++k) {
+    const std::uint32_t v = welded_.indices[3 * std::size_t(triangle) + std::size_t(k)];
+    const glm::vec3 p = welded_.positions_mm[v];
+    corners.vertex[k] = v;
+    corners.outline[k] = {glm::dot(p, frame.across), glm::dot(p, frame.across2)};
+    corners.depth[k] = glm::dot(p, frame.push);
+    corners.push[k] = push_mm_[v];
+  }
+  return corners;
+}
+
+// Written here, not found in a library: the walls are those of the one surface the march runs on.
+// Each triangle the dent moves looks along the push as far as the wall it could reach (its largest
+// push / 0.8) for triangles behind it; their corners move enough to keep a fifth of the gap
+// (least_wall_push), drag their neighbours along and look in turn. A ring of pending vertices, each in
+// it at most once, so that nothing allocates.
+void SurfacePatch::give_way(glm::vec3 point_mm, PushedDent dent) noexcept {
+  Frame frame;
+  frame.push = -contact_normal_;
+  if (glm::dot(frame.push, frame.push) == 0.0f) return;
+  frame.across = glm::normalize(std::abs(frame.push.x) < 0.6f ? glm::cross(frame.push, glm::vec3(1, 0, 0))
+                                                              : glm::cross(frame.push, glm::vec3(0, 1, 0)));
+  frame.across2 = glm::cross(frame.push, frame.across);
   const float least_push = dent_gaussian(dent_cutoff_sigmas * dent.sigma_mm, dent.depth_mm, dent.sigma_mm);
-  // The dent's vertices cast where they move by a tenth of p or more: the rays cost about 1 us each,
-  // and below a tenth they found no wall the others missed on the real cortices (the same folds at
-  // 2 sigma).
-  const float least_ray_push = 0.1f * dent.depth_mm;
   const std::size_t ring = pending_.size();
   std::size_t head = 0, count = 0;
-  constexpr std::uint8_t pending = 1, raised = 2;  // flags in queued_
+  constexpr std::uint8_t pending = 1, raised = 2, lowered = 4;  // flags in queued_
   const auto enqueue = [&](std::uint32_t v) {
+    for (const std::uint32_t t : field_.triangles_around(v)) unsettled_[t] = 1;
     if ((queued_[v] & pending) != 0) return;
     queued_[v] |= pending;
     pending_[(head + count++) % ring] = v;
   };
   for (const std::uint32_t v : patch_) {
     push_mm_[v] = dent_gaussian(distance_mm_[v], dent.depth_mm, dent.sigma_mm);
-    if (push_mm_[v] > least_ray_push) enqueue(v);
+    enqueue(v);
   }
   // A vertex raised here drags its neighbours along: no more than surface_dent_max_slope between them
   // (the dent's own steepest slope), so that the part of a wall that gives way bends instead of
-  // stepping (a step along the push turns the triangles of a wall parallel to it over) and covers the
-  // wall between the rays.
+  // stepping (a step along the push turns the triangles of a wall parallel to it over).
   const auto raise = [&](std::uint32_t v, float needed) {
     if (std::isinf(distance_mm_[v])) {
+      if (needed <= least_push) return;
       push_mm_[v] = 0.0f;
       distance_mm_[v] = std::numeric_limits<float>::max();  // in the patch from now on
       patch_.push_back(v);
     }
+    // Never past the straight-line Gaussian: the shaders take the larger of the two distances.
+    needed = std::min(needed, dent_gaussian(glm::distance(welded_.positions_mm[v], point_mm), dent.depth_mm,
+                                            dent.sigma_mm));
     if (push_mm_[v] >= needed || needed <= least_push) return;
     push_mm_[v] = needed;
     queued_[v] |= raised;
     enqueue(v);
   };
-  constexpr float start_mm = 1.0e-3f;  // off the vertex's own triangles
+  // A triangle whose push grows against the push's direction turns over where that growth passes 1 per
+  // mm along the push (the deformed normal's share of the old one is 1 + push . grad(push)); its
+  // corners further along the push move on until it keeps a fifth.
+  const auto keep_upright = [&](const Corners& c) {
+    float along[3], upright = 1.0f, rising = 0.0f;
+    upright_share(c, frame, along, upright);
+    for (int k = 0; k < 3; ++k) rising += std::max(along[k], 0.0f);
+    constexpr float kept = 1.0f - wall_gap_slope;
+    if (upright >= kept || !(rising > 0.0f)) return;
+    const float more = (kept - upright) / rising;
+    for (int k = 0; k < 3; ++k)
+      if (along[k] > 0.0f) raise(c.vertex[k], c.push[k] + more);
+  };
   // Each raise is lower than the push that caused it, so the walk ends; the bound only guards it.
   for (std::size_t steps = 0; count > 0 && steps < 16 * ring; ++steps) {
     const std::uint32_t y = pending_[head];
@@ -171,24 +294,70 @@ void SurfacePatch::give_way(PushedDent dent) noexcept {
         }
       }
     }
-    const float reach_mm = push_mm_[y] / wall_gap_slope;
-    if (reach_mm <= start_mm || reach_mm < clearance_mm_[y]) continue;
-    const BvhHit hit = walls_bvh_.first_hit(glm::dvec3(from + push * start_mm),
-                                            glm::dvec3(from + push * reach_mm), Faces::both);
-    if (!hit.hit()) continue;
-    const std::uint32_t* corners = &welded_.indices[3 * std::size_t(hit.triangle)];
-    if (corners[0] == y || corners[1] == y || corners[2] == y) continue;
-    const float gap_mm = start_mm + hit.t * (reach_mm - start_mm);
-    for (int k = 0; k < 3; ++k) raise(corners[k], push_mm_[y] - wall_gap_slope * gap_mm);
+    for (const std::uint32_t t : field_.triangles_around(y)) {
+      if (unsettled_[t] == 0) continue;
+      unsettled_[t] = 0;
+      const Corners front = corners_of(t, frame);
+      keep_upright(front);
+      const float reach_mm = std::max({front.push[0], front.push[1], front.push[2]}) / wall_gap_slope;
+      if (!(reach_mm > 0.0f) || reach_mm < clearance_mm_[t]) continue;
+      const glm::vec3 low =
+          glm::min(glm::min(welded_.positions_mm[front.vertex[0]], welded_.positions_mm[front.vertex[1]]),
+                   welded_.positions_mm[front.vertex[2]]);
+      const glm::vec3 high =
+          glm::max(glm::max(welded_.positions_mm[front.vertex[0]], welded_.positions_mm[front.vertex[1]]),
+                   welded_.positions_mm[front.vertex[2]]);
+      const glm::vec3 swept = frame.push * reach_mm;
+      walls_bvh_.for_each_in_box(
+          glm::min(low, low + swept), glm::max(high, high + swept), [&](std::uint32_t primitive) {
+            const std::uint32_t u = walls_bvh_.triangle(primitive).id;
+            const std::uint32_t* w = &welded_.indices[3 * std::size_t(u)];
+            for (int k = 0; k < 3; ++k)
+              if (w[k] == front.vertex[0] || w[k] == front.vertex[1] || w[k] == front.vertex[2]) return;
+            const float least = least_wall_push(front, corners_of(u, frame));
+            for (int k = 0; k < 3; ++k) raise(w[k], least);
+          });
+    }
   }
-  for (const std::uint32_t v : patch_) queued_[v] = 0;
+  // Where the straight line's Gaussian stopped the raises of keep_upright (a sliver whose corners'
+  // distances disagree), the corners the other way move back instead; in a few sweeps, as moving one
+  // back can tip a neighbour over (moving back inside the walk above undoes raises it then redoes).
+  for (int sweep = 0; sweep < 4; ++sweep) {
+    bool moved = false;
+    for (const std::uint32_t y : patch_) {
+      for (const std::uint32_t t : field_.triangles_around(y)) {
+        const Corners c = corners_of(t, frame);
+        float along[3], upright = 1.0f, falling = 0.0f;
+        upright_share(c, frame, along, upright);
+        for (int k = 0; k < 3; ++k) falling -= std::min(along[k], 0.0f);
+        if (upright >= 1.0f - wall_gap_slope || !(falling > 0.0f)) continue;
+        const float less = (1.0f - wall_gap_slope - upright) / falling;
+        for (int k = 0; k < 3; ++k) {
+          if (along[k] >= 0.0f) continue;
+          push_mm_[c.vertex[k]] = std::max(c.push[k] - less, 0.0f);
+          queued_[c.vertex[k]] |= lowered;
+        }
+        moved = true;
+      }
+    }
+    if (!moved) break;
+  }
   // The distance at which the dent's Gaussian gives each vertex its push.
   const float two_sigma2 = 2.0f * dent.sigma_mm * dent.sigma_mm;
   for (const std::uint32_t v : patch_) {
-    if (push_mm_[v] <= least_push) continue;
+    const bool moved_back = (queued_[v] & lowered) != 0;
+    queued_[v] = 0;
+    if (push_mm_[v] <= least_push) {
+      if (moved_back) distance_mm_[v] = dent_cutoff_sigmas * dent.sigma_mm;
+      continue;
+    }
     const float distance =
         std::sqrt(two_sigma2 * std::log(dent.depth_mm / std::min(push_mm_[v], dent.depth_mm)));
-    if (distance < distance_mm_[v]) distance_mm_[v] = distance, ++walls_;
+    if (distance < distance_mm_[v]) {
+      distance_mm_[v] = distance, ++walls_;
+    } else if (moved_back) {
+      distance_mm_[v] = distance;
+    }
   }
 }
 
@@ -220,6 +389,7 @@ void SurfacePatch::write_samples(glm::vec3 point_mm, float radius_mm) noexcept {
   for (const std::uint32_t v : patch_) {
     if (!in_patch(v)) {  // a wall's corner that did not give way after all
       distance_mm_[v] = std::numeric_limits<float>::infinity();
+      push_mm_[v] = 0.0f;
       continue;
     }
     const glm::vec3 position = welded_.positions_mm[v];

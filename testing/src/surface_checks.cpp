@@ -13,6 +13,9 @@
 #include <utility>
 #include <vector>
 
+#include "palpate/core/deform.hpp"
+#include "palpate/core/surface_patch.hpp"
+
 namespace palpate::testing {
 namespace {
 
@@ -176,6 +179,35 @@ FoldCounts count_folds(const Mesh& undeformed, const Mesh& deformed, glm::vec3 c
     counts.inverted += glm::dot(normal(undeformed), normal(deformed)) < 0.0f;
   }
   return counts;
+}
+
+FoldCounts folds_of_presses(const Mesh& mesh, bool walls_give_way, float depth_over_sigma,
+                            std::size_t presses) {
+  constexpr float sigma_mm = 4.0f;
+  SurfacePatch patch(mesh);
+  Mesh deformed;
+  FoldCounts total;
+  for (std::size_t i = 0; i < presses; ++i) {
+    const std::uint32_t triangle = std::uint32_t((101 + i * 7919) % mesh.triangle_count());
+    const glm::vec3 point =
+        (mesh.positions_mm[mesh.indices[3 * triangle]] + mesh.positions_mm[mesh.indices[3 * triangle + 1]] +
+         mesh.positions_mm[mesh.indices[3 * triangle + 2]]) /
+        3.0f;
+    Dent dent =
+        dent_with_slope_limit(Dent{point, depth_over_sigma * sigma_mm, sigma_mm}, surface_dent_max_slope);
+    if (walls_give_way) {
+      patch.compute(triangle, point, SurfacePatch::PushedDent{dent.depth_mm, dent.sigma_mm});
+    } else {
+      patch.compute(triangle, point, dent_cutoff_sigmas * dent.sigma_mm);
+    }
+    dent.along_surface = true;
+    dent.normal = patch.contact_normal();
+    deform_mesh(mesh, glm::mat4(1.0f), {&dent, 1}, deformed, patch.samples());
+    const FoldCounts counts = count_folds(mesh, deformed, point, dent_cutoff_sigmas * sigma_mm);
+    total.self_intersecting += counts.self_intersecting;
+    total.inverted += counts.inverted;
+  }
+  return total;
 }
 
 }  // namespace palpate::testing

@@ -144,11 +144,14 @@ TEST(BenchCommand, GeodesicAtItsSmallestReportsEveryRowAndFold) {
   for (const auto& row : report["rows"]) {
     for (const char* key : {"mesh", "vertices", "sigma_mm", "contacts", "bleed_euclidean", "bleed_geodesic",
                             "weight_error_mean", "weight_error_max", "weight_error_contacts_over_0_03",
-                            "update_ms", "upload_ms", "frame_overhead_pct"})
+                            "distance_ms", "update_ms", "upload_ms", "frame_overhead_pct"})
       ASSERT_TRUE(row.contains(key)) << key;
     EXPECT_EQ(row["mesh"], "phantom brain");
     EXPECT_EQ(row["bleed_geodesic"], 0) << "the geodesic falloff bleeds across a sulcus";
-    EXPECT_EQ(row["bleed_geodesic_with_walls"], 0) << "a 1 mm press moved a wall far along the phantom";
+    // A wall gives way only where the pushed surface would come within a fifth of its gap of it: a few
+    // vertices in the phantom's narrowest sulci at sigma 8 (2 of its 10,224 straight-line bleeders).
+    EXPECT_LE(row["bleed_geodesic_with_walls"].get<int>() * 100, row["bleed_euclidean"].get<int>())
+        << "a 1 mm press moved walls far along the phantom";
     EXPECT_GT(row["bleed_euclidean"].get<int>(), 0)
         << "the phantom's sulci should make the straight line bleed";
     EXPECT_LE(row["weight_error_max"].get<double>(), 0.1);

@@ -14,6 +14,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <functional>
+#include <glm/common.hpp>
 #include <glm/vec3.hpp>
 #include <span>
 #include <vector>
@@ -111,6 +112,35 @@ class Bvh {
   // faces it touches.
   BvhHit closest_point_near(const glm::dvec3& point, const glm::dvec3& around, double radius_mm,
                             ObjectMask seen = {}) const noexcept;
+
+  // Calls visit(primitive) for each triangle whose bounds meet the box [low, high] (world mm). No
+  // allocation; for searches around a region rather than along a ray or from a point.
+  template <class Visit>
+  void for_each_in_box(glm::vec3 low, glm::vec3 high, Visit&& visit) const noexcept {
+    if (nodes_.empty()) return;
+    const auto meets = [&](glm::vec3 min, glm::vec3 max) {
+      return min.x <= high.x && low.x <= max.x && min.y <= high.y && low.y <= max.y && min.z <= high.z &&
+             low.z <= max.z;
+    };
+    std::uint32_t stack[max_depth];
+    std::size_t top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes_[stack[--top]];
+      if (!meets(node.min, node.max)) continue;
+      if (node.count == 0) {
+        stack[top++] = node.first;
+        stack[top++] = node.first + 1;
+        continue;
+      }
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+        const auto& corners = triangles_[i].vertices;
+        if (meets(glm::min(glm::min(corners[0], corners[1]), corners[2]),
+                  glm::max(glm::max(corners[0], corners[1]), corners[2])))
+          visit(i);
+      }
+    }
+  }
 
   // A triangle by its BVH index (BvhHit::primitive), for callers that need it in double precision.
   const Triangle& triangle(std::uint32_t primitive) const noexcept { return triangles_[primitive]; }

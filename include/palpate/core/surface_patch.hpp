@@ -21,6 +21,7 @@
 //     dent.along_surface = true;
 //     dent.normal = the rotation to the dent's space * patch.contact_normal();
 #include <cstdint>
+#include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
 #include <span>
@@ -85,7 +86,18 @@ class SurfacePatch {
   std::uint32_t closest_triangle(glm::vec3 point_mm) const noexcept;
   float clearance(std::uint32_t welded_vertex, std::vector<std::uint32_t>& stamps, std::uint32_t stamp) const;
   void march(std::int64_t triangle, glm::vec3 point_mm, float radius_mm) noexcept;
-  void give_way(PushedDent dent) noexcept;
+  struct Frame {  // the push and two directions across it
+    glm::vec3 push, across, across2;
+  };
+  struct Corners {  // a triangle's corners: seen along the push, how deep along it, their pushes
+    std::uint32_t vertex[3];
+    glm::vec2 outline[3];
+    float depth[3], push[3];
+  };
+  Corners corners_of(std::uint32_t triangle, const Frame& frame) const noexcept;
+  float least_wall_push(const Corners& front, const Corners& wall) const noexcept;
+  void upright_share(const Corners& c, const Frame& frame, float along[3], float& upright) const noexcept;
+  void give_way(glm::vec3 point_mm, PushedDent dent) noexcept;
   void write_samples(glm::vec3 point_mm, float radius_mm) noexcept;
   void write(std::uint32_t welded_vertex, glm::vec4 sample) noexcept;
 
@@ -95,12 +107,14 @@ class SurfacePatch {
   std::vector<glm::vec4> samples_;
   std::vector<glm::vec3> gradient_sum_;  // per welded vertex, scratch
   Bvh walls_bvh_;                        // of welded_
-  std::vector<float> clearance_mm_;  // per welded vertex: how near the nearest triangle beyond its two rings
-  std::vector<float> distance_mm_;   // per welded vertex: the sample's distance; +inf outside the patch
-  std::vector<float> push_mm_;       // per welded vertex, scratch: what the dent moves it by
-  std::vector<std::uint32_t> pending_;  // per welded vertex, scratch: a ring of vertices to cast from
-  std::vector<std::uint8_t> queued_;    // per welded vertex, scratch: whether it is in pending_
-  std::vector<std::uint32_t> patch_;    // welded vertices with a sample now
+  std::vector<float>
+      clearance_mm_;  // per welded triangle: how near the nearest triangle beyond its corners' two rings
+  std::vector<float> distance_mm_;       // per welded vertex: the sample's distance; +inf outside the patch
+  std::vector<float> push_mm_;           // per welded vertex, scratch: what the dent moves it by
+  std::vector<std::uint32_t> pending_;   // per welded vertex, scratch: a ring of vertices to cast from
+  std::vector<std::uint8_t> queued_;     // per welded vertex, scratch: whether it is in pending_
+  std::vector<std::uint8_t> unsettled_;  // per welded triangle, scratch: whether to look behind it again
+  std::vector<std::uint32_t> patch_;     // welded vertices with a sample now
   std::size_t walls_ = 0;
   Range changed_;
   glm::vec3 contact_normal_{0.0f};

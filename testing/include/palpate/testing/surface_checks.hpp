@@ -33,4 +33,10 @@ struct FoldCounts {
 };
 FoldCounts count_folds(const Mesh& undeformed, const Mesh& deformed, glm::vec3 center_mm, float radius_mm);
 
+// Presses of depth `depth_over_sigma` sigma (4 mm, widened as the renderer widens it) at the centroids
+// of `presses` triangles spread over `mesh`, falling off along the surface, with the walls behind the
+// dent giving way (SurfacePatch::PushedDent) or not; their folds summed.
+FoldCounts folds_of_presses(const Mesh& mesh, bool walls_give_way, float depth_over_sigma,
+                            std::size_t presses);
+
 }  // namespace palpate::testing
