@@ -43,18 +43,20 @@ class SurfacePatch {
   };
 
   // A dent of depth p and spread sigma (object frame; sigma as widened by dent_with_slope_limit) that
-  // pushes every vertex against contact_normal(). Where the dent would move a vertex y by G(y) and a
-  // wall lies t behind y along the push, the wall's vertices there move at least G(y) - 0.8 t: the wall
-  // gives way ahead of the dent, keeping a fifth of the gap, and so do walls behind it in turn. Such a
-  // vertex's distance becomes the one at which the dent's Gaussian gives that push: between the
-  // straight line and the distance along the surface.
+  // pushes every vertex against contact_normal(). Where a point the dent moves by G lies t in front of
+  // a wall along the push, the wall there moves at least G - 0.8 t (exactly, over the two triangles'
+  // overlap seen along the push): the wall gives way ahead of the dent, keeping a fifth of the gap, and
+  // so do walls behind it in turn. A triangle the pushes would turn over has its corners further along
+  // the push raised. No vertex moves past the straight line's Gaussian; its distance becomes the one at
+  // which the dent's Gaussian gives its push: between the straight line and the distance along the
+  // surface, so the shaders need nothing more.
   struct PushedDent {
     float depth_mm = 0.0f, sigma_mm = 0.0f;
   };
   static constexpr float wall_gap_slope = 0.8f;
 
   // Copies what it needs of `mesh` (its positions and triangles, welded by position) and builds a BVH of
-  // it for the walls, with each vertex's clearance (0.4-0.55 s for the 137,854 triangles of the Colin27
+  // it for the walls, with each triangle's clearance (0.4-0.55 s for the 137,854 triangles of the Colin27
   // brain on the development VM). Allocates.
   explicit SurfacePatch(const Mesh& mesh);
   SurfacePatch(const SurfacePatch&) = delete;  // its field refers to its own welded mesh
