@@ -236,7 +236,7 @@ SurfacePatch::Corners SurfacePatch::corners_of(std::uint32_t triangle, const Fra
 // Written here, not found in a library: the walls are those of the one surface the march runs on.
 // Each triangle the dent moves looks along the push as far as the wall it could reach (its largest
 // push / 0.8) for triangles behind it; their corners move enough to keep a fifth of the gap
-// (least_wall_push), drag their neighbours along and look in turn. A ring of pending vertices, each in
+// (least_wall_push) and look in turn. A ring of pending vertices, each in
 // it at most once, so that nothing allocates.
 void SurfacePatch::give_way(glm::vec3 point_mm, PushedDent dent) noexcept {
   Frame frame;
@@ -248,7 +248,7 @@ void SurfacePatch::give_way(glm::vec3 point_mm, PushedDent dent) noexcept {
   const float least_push = dent_gaussian(dent_cutoff_sigmas * dent.sigma_mm, dent.depth_mm, dent.sigma_mm);
   const std::size_t ring = pending_.size();
   std::size_t head = 0, count = 0;
-  constexpr std::uint8_t pending = 1, raised = 2, lowered = 4;  // flags in queued_
+  constexpr std::uint8_t pending = 1, lowered = 2;  // flags in queued_
   const auto enqueue = [&](std::uint32_t v) {
     for (const std::uint32_t t : field_.triangles_around(v)) unsettled_[t] = 1;
     if ((queued_[v] & pending) != 0) return;
@@ -259,9 +259,6 @@ void SurfacePatch::give_way(glm::vec3 point_mm, PushedDent dent) noexcept {
     push_mm_[v] = dent_gaussian(distance_mm_[v], dent.depth_mm, dent.sigma_mm);
     enqueue(v);
   }
-  // A vertex raised here drags its neighbours along: no more than surface_dent_max_slope between them
-  // (the dent's own steepest slope), so that the part of a wall that gives way bends instead of
-  // stepping (a step along the push turns the triangles of a wall parallel to it over).
   const auto raise = [&](std::uint32_t v, float needed) {
     if (std::isinf(distance_mm_[v])) {
       if (needed <= least_push) return;
@@ -274,7 +271,6 @@ void SurfacePatch::give_way(glm::vec3 point_mm, PushedDent dent) noexcept {
                                             dent.sigma_mm));
     if (push_mm_[v] >= needed || needed <= least_push) return;
     push_mm_[v] = needed;
-    queued_[v] |= raised;
     enqueue(v);
   };
   // A triangle whose push grows against the push's direction turns over where that growth passes 1 per
@@ -290,21 +286,12 @@ void SurfacePatch::give_way(glm::vec3 point_mm, PushedDent dent) noexcept {
     for (int k = 0; k < 3; ++k)
       if (along[k] > 0.0f) raise(c.vertex[k], c.push[k] + more);
   };
-  // Each raise is lower than the push that caused it, so the walk ends; the bound only guards it.
+  // Pushes only grow, and never past the straight line's Gaussian, so the walk settles; the bound only
+  // guards it.
   for (std::size_t steps = 0; count > 0 && steps < 16 * ring; ++steps) {
     const std::uint32_t y = pending_[head];
     head = (head + 1) % ring, --count;
     queued_[y] &= std::uint8_t(~pending);
-    const glm::vec3 from = welded_.positions_mm[y];
-    if ((queued_[y] & raised) != 0) {
-      for (const std::uint32_t t : field_.triangles_around(y)) {
-        for (int k = 0; k < 3; ++k) {
-          const std::uint32_t n = welded_.indices[3 * std::size_t(t) + std::size_t(k)];
-          if (n != y)
-            raise(n, push_mm_[y] - surface_dent_max_slope * glm::distance(from, welded_.positions_mm[n]));
-        }
-      }
-    }
     for (const std::uint32_t t : field_.triangles_around(y)) {
       if (unsettled_[t] == 0) continue;
       unsettled_[t] = 0;
@@ -405,7 +392,6 @@ void SurfacePatch::write_samples(glm::vec3 point_mm, float radius_mm) noexcept {
   for (const std::uint32_t v : patch_) {
     if (!in_patch(v)) {  // a wall's corner that did not give way after all
       distance_mm_[v] = std::numeric_limits<float>::infinity();
-      push_mm_[v] = 0.0f;
       continue;
     }
     const glm::vec3 position = welded_.positions_mm[v];

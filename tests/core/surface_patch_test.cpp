@@ -181,5 +181,23 @@ TEST(SurfacePatch, APressDeeperThanTheWallBehindPushesTheWallAhead) {
       through, kept, patch.walls_given_way());
 }
 
+// A patch is reused from frame to frame: what a press leaves behind (its pushes, the walls it moved)
+// must not change the next press, here one whose patch reaches into the deep dent before it.
+TEST(SurfacePatch, APressIsTheSameAfterAnotherAsOnAFreshPatch) {
+  const Mesh slab = make_thin_slab();
+  const SurfacePatch::PushedDent deep{6.0f, 4.5f}, shallow{1.0f, 3.0f};
+  const glm::vec3 first(0.3f, -0.2f, 1.5f), next(10.0f, 0.4f, 1.5f);
+  SurfacePatch fresh(slab), reused(slab);
+  reused.compute(-1, first, deep);
+  ASSERT_GT(reused.walls_given_way(), 0u);
+  reused.compute(-1, next, shallow);
+  fresh.compute(-1, next, shallow);
+  std::size_t different = 0;
+  for (std::size_t v = 0; v < slab.vertex_count(); ++v)
+    different += reused.samples()[v] != fresh.samples()[v];
+  EXPECT_EQ(different, 0u);
+  EXPECT_EQ(reused.walls_given_way(), fresh.walls_given_way());
+}
+
 }  // namespace
 }  // namespace palpate
