@@ -2,7 +2,7 @@
 // vertex one way drives the surface through any wall behind or beside it that is thinner than the press
 // is deep; with the walls giving way (SurfacePatch::PushedDent) none turn over, and on the phantom none
 // pass through another. Counted by palpate::testing::count_folds (exact predicates). The real brain's
-// presses are in tests/volume/deep_press_colin27_test.cpp.
+// presses are in tests/volume/colin27_test.cpp.
 #include <gtest/gtest.h>
 
 #include <cstdio>
