@@ -6,7 +6,7 @@ set -euo pipefail
 packages=(
   build-essential cmake ninja-build pkg-config
   libglm-dev libcoin-dev libassimp-dev libgiftiio-dev libexpat1-dev zlib1g-dev
-  libtomlplusplus-dev libcli11-dev libstb-dev libqhull-dev libvtk9-dev libcgal-dev libeigen3-dev
+  libtomlplusplus-dev libcli11-dev libstb-dev libqhull-dev libmeshoptimizer-dev libvtk9-dev libcgal-dev libeigen3-dev
   libgdcm-dev libgdcm-tools mricron-data
   libepoxy-dev libglew-dev libegl-dev libegl1 libegl-mesa0 libgl1-mesa-dri libgl-dev libglfw3-dev libimgui-dev
   libgtest-dev libgmock-dev libbenchmark-dev nlohmann-json3-dev

@@ -1,17 +1,58 @@
 #include "palpate/core/surface_patch.hpp"
 
+#include <meshoptimizer.h>
+
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <limits>
+#include <numeric>
 
 namespace palpate {
+namespace {
+
+// The march and the walls read each vertex's and each triangle's neighbours: numbered near one another,
+// they share cache lines. Meshes come in any order (the Colin27 brain's, after the decimation, is
+// scattered): in this one the march over the Colin27 brain took 20-25% less time (docs/design.md).
+// The groups renumbered along meshoptimizer's space-filling curve.
+PositionGroups in_spatial_order(const Mesh& mesh, PositionGroups groups) {
+  std::vector<glm::vec3> positions(groups.count);
+  for (std::size_t v = 0; v < groups.group.size(); ++v) positions[groups.group[v]] = mesh.positions_mm[v];
+  std::vector<unsigned int> renumbered(groups.count);
+  meshopt_spatialSortRemap(renumbered.data(), &positions.data()->x, positions.size(), sizeof(glm::vec3));
+  for (std::uint32_t& g : groups.group) g = renumbered[g];
+  return groups;
+}
+
+// The welded mesh with its triangles in the order of their lowest corner; `welded_triangle` gets each
+// original triangle's new number.
+Mesh weld_in_spatial_order(const Mesh& mesh, const PositionGroups& groups,
+                           std::vector<std::uint32_t>& welded_triangle) {
+  Mesh welded = weld_by_position(mesh, groups);
+  const std::size_t triangles = welded.indices.size() / 3;
+  std::vector<std::uint32_t> order(triangles), lowest(triangles);
+  std::iota(order.begin(), order.end(), 0u);
+  for (std::size_t t = 0; t < triangles; ++t)
+    lowest[t] = std::min({welded.indices[3 * t], welded.indices[3 * t + 1], welded.indices[3 * t + 2]});
+  std::stable_sort(order.begin(), order.end(),
+                   [&](std::uint32_t a, std::uint32_t b) { return lowest[a] < lowest[b]; });
+  const std::vector<std::uint32_t> indices = std::move(welded.indices);
+  welded.indices.resize(indices.size());
+  welded_triangle.resize(triangles);
+  for (std::size_t t = 0; t < triangles; ++t) {
+    welded_triangle[order[t]] = std::uint32_t(t);
+    std::copy_n(&indices[3 * std::size_t(order[t])], 3, &welded.indices[3 * t]);
+  }
+  return welded;
+}
+
+}  // namespace
 
 SurfacePatch::SurfacePatch(const Mesh& mesh)
-    : SurfacePatch(mesh, group_positions(mesh, default_weld_tolerance_mm(mesh))) {}
+    : SurfacePatch(mesh, in_spatial_order(mesh, group_positions(mesh, default_weld_tolerance_mm(mesh)))) {}
 
 SurfacePatch::SurfacePatch(const Mesh& mesh, const PositionGroups& groups)
-    : welded_(weld_by_position(mesh, groups)), field_(welded_) {
+    : welded_(weld_in_spatial_order(mesh, groups, welded_triangle_)), field_(welded_) {
   Scene alone;
   alone.objects.push_back({"surface patch", welded_, glm::mat4(1.0f), Material{}, {}});
   walls_bvh_ = Bvh::build(alone);
@@ -117,7 +158,7 @@ void SurfacePatch::march(std::int64_t triangle, glm::vec3 point_mm, float radius
   const std::size_t triangles = welded_.indices.size() / 3;
   if (triangles == 0) return;
   const std::uint32_t contact = triangle >= 0 && std::size_t(triangle) < triangles
-                                    ? std::uint32_t(triangle)
+                                    ? welded_triangle_[std::size_t(triangle)]
                                     : closest_triangle(point_mm);
   field_.compute(contact, point_mm, radius_mm);  // the triangle is in range: does not throw
   const std::uint32_t* corners = &welded_.indices[3 * std::size_t(contact)];

@@ -103,7 +103,8 @@ class SurfacePatch {
   void write_samples(glm::vec3 point_mm, float radius_mm) noexcept;
   void write(std::uint32_t welded_vertex, glm::vec4 sample) noexcept;
 
-  Mesh welded_;
+  std::vector<std::uint32_t> welded_triangle_;  // per triangle of the mesh: its number in welded_
+  Mesh welded_;  // vertices along a space-filling curve, triangles by their lowest corner
   std::vector<std::uint32_t> first_copy_, copies_;  // the mesh's vertices at each welded vertex
   GeodesicField field_;
   std::vector<glm::vec4> samples_;
