@@ -99,6 +99,7 @@ void SurfacePatch::write(std::uint32_t welded_vertex, glm::vec4 sample) noexcept
 
 void SurfacePatch::clear() noexcept {
   changed_ = {};
+  last_press_.reset();
   for (const std::uint32_t w : patch_) {
     write(w, no_surface_sample);
     distance_mm_[w] = std::numeric_limits<float>::infinity();
@@ -147,10 +148,18 @@ void SurfacePatch::compute(std::int64_t triangle, glm::vec3 point_mm, float radi
 }
 
 void SurfacePatch::compute(std::int64_t triangle, glm::vec3 point_mm, PushedDent dent) noexcept {
+  // A mouse at rest or a scripted hold asks for the same press frame after frame: the whole update is
+  // saved (on the Colin27 brain at sigma 8 mm, 3-6 ms of a 19 ms frame on llvmpipe).
+  const Press press{triangle, point_mm, dent};
+  if (last_press_ == press) {
+    changed_ = {};
+    return;
+  }
   const float radius_mm = dent_cutoff_sigmas * dent.sigma_mm;
   march(triangle, point_mm, radius_mm);
   if (dent.depth_mm > 0.0f && dent.sigma_mm > 0.0f) give_way(point_mm, dent);
   write_samples(point_mm, radius_mm);
+  last_press_ = press;
 }
 
 void SurfacePatch::march(std::int64_t triangle, glm::vec3 point_mm, float radius_mm) noexcept {

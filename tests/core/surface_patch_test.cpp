@@ -9,6 +9,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <numbers>
+#include <vector>
 
 #include "palpate/core/deform.hpp"
 #include "palpate/core/shapes.hpp"
@@ -197,6 +198,34 @@ TEST(SurfacePatch, APressIsTheSameAfterAnotherAsOnAFreshPatch) {
     different += reused.samples()[v] != fresh.samples()[v];
   EXPECT_EQ(different, 0u);
   EXPECT_EQ(reused.walls_given_way(), fresh.walls_given_way());
+}
+
+// A press held still (the same contact, depth and sigma) leaves the samples as they are and asks for no
+// upload; any change of the press computes them again.
+TEST(SurfacePatch, APressHeldStillIsNotComputedAgain) {
+  const Mesh slab = make_thin_slab();
+  const glm::vec3 contact(0.3f, -0.2f, 1.5f);
+  const SurfacePatch::PushedDent deep{6.0f, 4.5f}, less_deep{3.0f, 4.5f};
+  SurfacePatch patch(slab);
+  patch.compute(-1, contact, deep);
+  const std::vector<glm::vec4> pressed(patch.samples().begin(), patch.samples().end());
+  const std::size_t walls = patch.walls_given_way();
+  ASSERT_GT(patch.changed().count, 0u);
+
+  patch.compute(-1, contact, deep);
+  EXPECT_EQ(patch.changed().count, 0u);
+  EXPECT_TRUE(std::equal(pressed.begin(), pressed.end(), patch.samples().begin()));
+  EXPECT_EQ(patch.walls_given_way(), walls);
+
+  patch.compute(-1, contact, less_deep);  // the same contact, shallower: fewer walls give way
+  EXPECT_GT(patch.changed().count, 0u);
+  EXPECT_LT(patch.walls_given_way(), walls);
+  patch.compute(-1, contact + glm::vec3(0.5f, 0.0f, 0.0f), less_deep);
+  EXPECT_GT(patch.changed().count, 0u);
+  patch.clear();
+  patch.compute(-1, contact, deep);  // after a clear, the same press is computed afresh
+  EXPECT_GT(patch.changed().count, 0u);
+  EXPECT_TRUE(std::equal(pressed.begin(), pressed.end(), patch.samples().begin()));
 }
 
 }  // namespace

@@ -24,6 +24,7 @@
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
 #include <glm/vec4.hpp>
+#include <optional>
 #include <span>
 #include <vector>
 
@@ -52,6 +53,7 @@ class SurfacePatch {
   // surface, so the shaders need nothing more.
   struct PushedDent {
     float depth_mm = 0.0f, sigma_mm = 0.0f;
+    bool operator==(const PushedDent&) const = default;
   };
   static constexpr float wall_gap_slope = 0.8f;
 
@@ -68,7 +70,8 @@ class SurfacePatch {
   // allocation.
   void compute(std::int64_t triangle, glm::vec3 point_mm, float radius_mm) noexcept;
   // The patch of `dent` out to 4 sigma, with the walls it would pass through given way (PushedDent). No
-  // allocation.
+  // allocation. The same press as the last (a press held still) is not computed again: changed() is then
+  // empty.
   void compute(std::int64_t triangle, glm::vec3 point_mm, PushedDent dent) noexcept;
   // No dent: the last patch goes back to no_surface_sample. No allocation.
   void clear() noexcept;
@@ -119,6 +122,13 @@ class SurfacePatch {
   std::vector<std::uint8_t> unsettled_;  // per welded triangle, scratch: whether to look behind it again
   std::vector<std::uint32_t> patch_;     // welded vertices with a sample now
   std::size_t walls_ = 0;
+  struct Press {
+    std::int64_t triangle;
+    glm::vec3 point_mm;
+    PushedDent dent;
+    bool operator==(const Press&) const = default;
+  };
+  std::optional<Press> last_press_;  // what the samples are of, when a PushedDent compute() made them
   Range changed_;
   glm::vec3 contact_normal_{0.0f};
 };
