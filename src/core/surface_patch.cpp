@@ -11,34 +11,47 @@
 namespace palpate {
 namespace {
 
+// How far apart in number a triangle's corners lie, on average, with the mesh's vertex v numbered number[v].
+double mean_corner_spread(const Mesh& mesh, const std::vector<std::uint32_t>& number) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3) {
+    const std::uint32_t a = number[mesh.indices[i]], b = number[mesh.indices[i + 1]],
+                        c = number[mesh.indices[i + 2]];
+    sum += double(std::max({a, b, c}) - std::min({a, b, c}));
+  }
+  return sum / double(std::max<std::size_t>(mesh.indices.size() / 3, 1));
+}
+
 // The march and the walls read each vertex's and each triangle's neighbours: numbered near one another,
-// they share cache lines. Meshes come in any order (the Colin27 brain's, after the decimation, is
-// scattered): in this one the march over the Colin27 brain took 20-25% less time (docs/design.md).
-// The groups renumbered along meshoptimizer's space-filling curve.
-PositionGroups in_spatial_order(const Mesh& mesh, PositionGroups groups) {
+// they share cache lines. Meshes come in any order: the Colin27 brain's, after the decimation, is
+// scattered over the surface, and renumbered its march takes 20-30% less time; the SPM12 cortex's
+// (a subdivided icosahedron) is already more local than the curve's, and renumbered its march took
+// 15% more (docs/design.md). So the groups are renumbered along meshoptimizer's space-filling curve, and
+// the triangles put in the order of their lowest corner, only where that brings the corners nearer;
+// `welded_triangle` gets each triangle's number in the welded mesh.
+Mesh weld_in_spatial_order(const Mesh& mesh, PositionGroups& groups,
+                           std::vector<std::uint32_t>& welded_triangle) {
   std::vector<glm::vec3> positions(groups.count);
   for (std::size_t v = 0; v < groups.group.size(); ++v) positions[groups.group[v]] = mesh.positions_mm[v];
   std::vector<unsigned int> renumbered(groups.count);
   meshopt_spatialSortRemap(renumbered.data(), &positions.data()->x, positions.size(), sizeof(glm::vec3));
-  for (std::uint32_t& g : groups.group) g = renumbered[g];
-  return groups;
-}
+  std::vector<std::uint32_t> along_curve(groups.group.size());
+  for (std::size_t v = 0; v < along_curve.size(); ++v) along_curve[v] = renumbered[groups.group[v]];
+  const bool nearer = mean_corner_spread(mesh, along_curve) < mean_corner_spread(mesh, groups.group);
+  if (nearer) groups.group = std::move(along_curve);
 
-// The welded mesh with its triangles in the order of their lowest corner; `welded_triangle` gets each
-// original triangle's new number.
-Mesh weld_in_spatial_order(const Mesh& mesh, const PositionGroups& groups,
-                           std::vector<std::uint32_t>& welded_triangle) {
   Mesh welded = weld_by_position(mesh, groups);
   const std::size_t triangles = welded.indices.size() / 3;
   std::vector<std::uint32_t> order(triangles), lowest(triangles);
   std::iota(order.begin(), order.end(), 0u);
+  welded_triangle = order;
+  if (!nearer) return welded;
   for (std::size_t t = 0; t < triangles; ++t)
     lowest[t] = std::min({welded.indices[3 * t], welded.indices[3 * t + 1], welded.indices[3 * t + 2]});
   std::stable_sort(order.begin(), order.end(),
                    [&](std::uint32_t a, std::uint32_t b) { return lowest[a] < lowest[b]; });
   const std::vector<std::uint32_t> indices = std::move(welded.indices);
   welded.indices.resize(indices.size());
-  welded_triangle.resize(triangles);
   for (std::size_t t = 0; t < triangles; ++t) {
     welded_triangle[order[t]] = std::uint32_t(t);
     std::copy_n(&indices[3 * std::size_t(order[t])], 3, &welded.indices[3 * t]);
@@ -49,9 +62,9 @@ Mesh weld_in_spatial_order(const Mesh& mesh, const PositionGroups& groups,
 }  // namespace
 
 SurfacePatch::SurfacePatch(const Mesh& mesh)
-    : SurfacePatch(mesh, in_spatial_order(mesh, group_positions(mesh, default_weld_tolerance_mm(mesh)))) {}
+    : SurfacePatch(mesh, group_positions(mesh, default_weld_tolerance_mm(mesh))) {}
 
-SurfacePatch::SurfacePatch(const Mesh& mesh, const PositionGroups& groups)
+SurfacePatch::SurfacePatch(const Mesh& mesh, PositionGroups groups)
     : welded_(weld_in_spatial_order(mesh, groups, welded_triangle_)), field_(welded_) {
   Scene alone;
   alone.objects.push_back({"surface patch", welded_, glm::mat4(1.0f), Material{}, {}});

@@ -87,7 +87,7 @@ class SurfacePatch {
   std::size_t walls_given_way() const noexcept { return walls_; }
 
  private:
-  SurfacePatch(const Mesh& mesh, const PositionGroups& groups);
+  SurfacePatch(const Mesh& mesh, PositionGroups groups);
   std::uint32_t closest_triangle(glm::vec3 point_mm) const noexcept;
   float clearance(std::uint32_t welded_vertex, std::vector<std::uint32_t>& stamps, std::uint32_t stamp) const;
   void march(std::int64_t triangle, glm::vec3 point_mm, float radius_mm) noexcept;
@@ -107,7 +107,8 @@ class SurfacePatch {
   void write(std::uint32_t welded_vertex, glm::vec4 sample) noexcept;
 
   std::vector<std::uint32_t> welded_triangle_;  // per triangle of the mesh: its number in welded_
-  Mesh welded_;  // vertices along a space-filling curve, triangles by their lowest corner
+  Mesh welded_;  // where that is more local: vertices along a space-filling curve, triangles by their lowest
+                 // corner
   std::vector<std::uint32_t> first_copy_, copies_;  // the mesh's vertices at each welded vertex
   GeodesicField field_;
   std::vector<glm::vec4> samples_;
