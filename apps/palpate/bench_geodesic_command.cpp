@@ -185,7 +185,8 @@ FrameTimes time_frames(const Mesh& mesh, float sigma_mm, std::span<const Contact
     const View view =
         view_of(site.point_mm, site.normal, 70.0f, float(target.width()) / float(target.height()));
     const gl::ObjectDent dent{0, Dent{site.point_mm, sigma_mm, sigma_mm}, int(site.triangle)};
-    for (gl::Renderer* renderer : {&straight, &along}) {
+    gl::Renderer* const order[2] = {frame % 2 == 0 ? &straight : &along, frame % 2 == 0 ? &along : &straight};
+    for (gl::Renderer* renderer : order) {
       glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
       glFinish();
       const Clock::time_point start = Clock::now();

@@ -203,16 +203,16 @@ BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
 }
 
 BvhHit Bvh::closest_point(const glm::dvec3& point, double max_distance_mm, ObjectMask seen) const noexcept {
-  return closest_point_if(point, max_distance_mm,
-                          [&](std::uint32_t primitive) { return primitive_seen(seen, primitive); });
+  return closest_point_if<false>(point, max_distance_mm,
+                                 [&](std::uint32_t primitive) { return primitive_seen(seen, primitive); });
 }
 
 BvhHit Bvh::closest_point_where(const glm::dvec3& point, double max_distance_mm,
                                 const std::function<bool(std::uint32_t)>& accepted) const {
-  return closest_point_if(point, max_distance_mm, accepted);
+  return closest_point_if<true>(point, max_distance_mm, accepted);
 }
 
-template <class Accepted>
+template <bool ask_first, class Accepted>
 BvhHit Bvh::closest_point_if(const glm::dvec3& point, double max_distance_mm,
                              const Accepted& accepted) const noexcept {
   if (nodes_.empty() || !(max_distance_mm >= 0.0)) return {};
@@ -231,11 +231,14 @@ BvhHit Bvh::closest_point_if(const glm::dvec3& point, double max_distance_mm,
     const Node& node = nodes_[current];
     if (node.count > 0) {
       for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+        if constexpr (ask_first) {
+          if (!accepted(i)) continue;
+        }
         const Triangle& tri = triangles_[i];
         const glm::dvec3 q = closest_point_on_triangle(point, vertex(tri, 0), vertex(tri, 1), vertex(tri, 2));
         const glm::dvec3 offset = q - point;
         const double d2 = glm::dot(offset, offset);
-        if (d2 <= best_d2 && accepted(i)) {
+        if (d2 <= best_d2 && (ask_first || accepted(i))) {
           best_d2 = d2;
           best_point = q;
           best = i;

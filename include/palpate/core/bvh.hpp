@@ -102,8 +102,9 @@ class Bvh {
   // The closest point on any triangle of the `seen` objects to `point` no farther than
   // `max_distance_mm`, or no hit.
   BvhHit closest_point(const glm::dvec3& point, double max_distance_mm, ObjectMask seen = {}) const noexcept;
-  // The same among the triangles `accepted` takes (by BVH index), asked only of a triangle that would be
-  // the answer: for searches that leave some triangles out (not per tick: it calls through a function).
+  // The same among the triangles `accepted` takes (by BVH index), asked before a triangle's distance: for
+  // searches that leave out the triangles nearest the point, such as its own rings (not per tick: it
+  // calls through a function).
   BvhHit closest_point_where(const glm::dvec3& point, double max_distance_mm,
                              const std::function<bool(std::uint32_t primitive)>& accepted) const;
 
@@ -164,7 +165,7 @@ class Bvh {
   };
 
   BvhHit make_hit(std::uint32_t primitive, const glm::dvec3& point) const noexcept;
-  template <class Accepted>
+  template <bool ask_first, class Accepted>
   BvhHit closest_point_if(const glm::dvec3& point, double max_distance_mm,
                           const Accepted& accepted) const noexcept;
 
