@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <glm/geometric.hpp>
+#include <limits>
 #include <numbers>
 #include <vector>
 
@@ -125,10 +126,11 @@ TEST(SurfacePatch, AcrossAFoldOnlyTheStraightLineDentsTheFacingSheet) {
 
 // A slab 3 mm thick and open at its sides: two 60 x 60 mm sheets (1 mm cells), the top at z = 1.5
 // facing +z, the bottom at z = -1.5 facing -z. Along the surface the bottom cannot be reached from the top.
-Mesh make_thin_slab() {
+// With `bottom_cells` other than 60 the bottom's vertices do not lie below the top's.
+Mesh make_thin_slab(std::size_t bottom_cells = 60) {
   Mesh slab = make_grid(60.0f, 60);
   const std::size_t sheet = slab.vertex_count();
-  Mesh bottom = slab;
+  Mesh bottom = make_grid(60.0f, bottom_cells);
   for (glm::vec3& p : slab.positions_mm) p.z = 1.5f;
   for (glm::vec3& p : bottom.positions_mm) p.z = -1.5f;
   for (glm::vec3& n : bottom.normals) n = -n;
@@ -148,8 +150,8 @@ TEST(SurfacePatch, APressDeeperThanTheWallBehindPushesTheWallAhead) {
   SurfacePatch patch(slab);
   // The smallest gap left between the sheets along any vertical line, and how far the bottom moved
   // where the top's dent is below a tenth of p.
-  const auto gaps = [&] {
-    Dent along = dent;
+  const auto gaps = [&](const Dent& pressed) {
+    Dent along = pressed;
     along.along_surface = true;
     along.normal = patch.contact_normal();
     float least_gap = 1.0e9f, far_bottom_moved = 0.0f;
@@ -159,19 +161,19 @@ TEST(SurfacePatch, APressDeeperThanTheWallBehindPushesTheWallAhead) {
       const glm::vec3 bottom = displaced_position(slab.positions_mm[v + sheet], slab.normals[v + sheet],
                                                   {&along, 1}, patch.samples()[v + sheet]);
       least_gap = std::min(least_gap, top.z - bottom.z);
-      if (1.5f - top.z < 0.1f * dent.depth_mm)
+      if (1.5f - top.z < 0.1f * pressed.depth_mm)
         far_bottom_moved = std::max(far_bottom_moved, -1.5f - bottom.z);
     }
     return std::pair(least_gap, far_bottom_moved);
   };
   patch.compute(-1, contact, dent_cutoff_sigmas * dent.sigma_mm);  // the distance alone
-  const auto [through, untouched] = gaps();
+  const auto [through, untouched] = gaps(dent);
   EXPECT_LT(through, -2.5f);  // 6 mm deep through 3 mm
   EXPECT_EQ(untouched, 0.0f);
   EXPECT_EQ(patch.walls_given_way(), 0u);
 
   patch.compute(-1, contact, SurfacePatch::PushedDent{dent.depth_mm, dent.sigma_mm});
-  const auto [kept, far_moved] = gaps();
+  const auto [kept, far_moved] = gaps(dent);
   // The bottom moves at least G - 0.8 t: a fifth of the 3 mm gap stays.
   EXPECT_GE(kept, 0.2f * 3.0f - 1.0e-3f);
   EXPECT_EQ(far_moved, 0.0f);  // where the top moves less than 2.4 mm, the bottom stays
@@ -180,6 +182,54 @@ TEST(SurfacePatch, APressDeeperThanTheWallBehindPushesTheWallAhead) {
       "thin slab, 6 mm press: least gap %.3f mm with the distance alone, %.3f mm with %zu wall vertices "
       "given way\n",
       through, kept, patch.walls_given_way());
+
+  // A press that only just reaches the wall: 4 mm deep, the wall 3 mm behind, within its reach of
+  // 4 / 0.8 = 5 mm.
+  const Dent shallower = dent_with_slope_limit(Dent{contact, 4.0f, 3.0f}, surface_dent_max_slope);
+  patch.compute(-1, contact, SurfacePatch::PushedDent{shallower.depth_mm, shallower.sigma_mm});
+  EXPECT_GE(gaps(shallower).first, 0.2f * 3.0f - 1.0e-3f);
+}
+
+// Where the sheets' triangles do not line up, the walls' corners move by what the overlaps need, so a
+// fifth of the gap stays between the vertices too: looked at every 0.2 mm under the dent, the surfaces
+// there being flat triangles between the displaced vertices.
+TEST(SurfacePatch, WhereTheSheetsDoNotLineUpAFifthOfTheGapStaysEverywhere) {
+  const Mesh slab = make_thin_slab(43);
+  const glm::vec3 contact(0.3f, -0.2f, 1.5f);
+  const Dent dent = dent_with_slope_limit(Dent{contact, 6.0f, 3.0f}, surface_dent_max_slope);
+  SurfacePatch patch(slab);
+  patch.compute(-1, contact, SurfacePatch::PushedDent{dent.depth_mm, dent.sigma_mm});
+  Dent along = dent;
+  along.along_surface = true;
+  along.normal = patch.contact_normal();
+  std::vector<glm::vec3> moved(slab.vertex_count());
+  for (std::size_t v = 0; v < moved.size(); ++v)
+    moved[v] = displaced_position(slab.positions_mm[v], slab.normals[v], {&along, 1}, patch.samples()[v]);
+  // The height of the displaced sheet (its triangles from `first` on, to `end`) above (x, y): the push is
+  // along z only.
+  const auto height = [&](glm::vec2 xy, std::size_t first, std::size_t end) {
+    for (std::size_t i = first; i < end; i += 3) {
+      const glm::vec3 a = moved[slab.indices[i]], b = moved[slab.indices[i + 1]],
+                      c = moved[slab.indices[i + 2]];
+      const float area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+      const float wb = ((xy.x - a.x) * (c.y - a.y) - (xy.y - a.y) * (c.x - a.x)) / area,
+                  wc = ((b.x - a.x) * (xy.y - a.y) - (b.y - a.y) * (xy.x - a.x)) / area;
+      if (wb >= -1e-5f && wc >= -1e-5f && wb + wc <= 1.0f + 1e-5f)
+        return a.z + wb * (b.z - a.z) + wc * (c.z - a.z);
+    }
+    return std::numeric_limits<float>::quiet_NaN();
+  };
+  const std::size_t top_end = 6 * 60 * 60;
+  float least_gap = std::numeric_limits<float>::infinity();
+  for (float x = -8.0f; x <= 8.0f; x += 0.2f) {
+    for (float y = -8.0f; y <= 8.0f; y += 0.2f) {
+      const glm::vec2 xy = glm::vec2(contact) + glm::vec2(x, y);
+      least_gap = std::min(least_gap, height(xy, 0, top_end) - height(xy, top_end, slab.indices.size()));
+    }
+  }
+  EXPECT_LT(least_gap, 1.0f);  // the dent closed the gap that far: the sheets were found
+  EXPECT_GE(least_gap, 0.2f * 3.0f - 1.0e-3f);
+  std::printf("thin slab, its sheets not lined up, 6 mm press: least gap %.3f mm\n", least_gap);
 }
 
 // A patch is reused from frame to frame: what a press leaves behind (its pushes, the walls it moved)
