@@ -203,8 +203,9 @@ void SurfacePatch::clear() noexcept {
 // A look from the vertex shorter than this meets no triangle but those of its two rings (its own sheet,
 // where the dent's slope limit and the upright rule keep the order): the walls need no look there. The
 // distance to the nearest other triangle, found in the BVH with the rings' triangles stamped out.
-float SurfacePatch::clearance(std::uint32_t welded_vertex, std::vector<std::uint32_t>& stamps,
-                              std::uint32_t stamp) const {
+// Marks with `stamp` the triangles of a welded vertex's two rings: its own sheet, left to the upright rule.
+void SurfacePatch::stamp_two_rings(std::uint32_t welded_vertex, std::vector<std::uint32_t>& stamps,
+                                   std::uint32_t stamp) const {
   for (const std::uint32_t t : field_.triangles_around(welded_vertex)) {
     for (int k = 0; k < 3; ++k) {
       for (const std::uint32_t u :
@@ -212,6 +213,11 @@ float SurfacePatch::clearance(std::uint32_t welded_vertex, std::vector<std::uint
         stamps[u] = stamp;
     }
   }
+}
+
+float SurfacePatch::clearance(std::uint32_t welded_vertex, std::vector<std::uint32_t>& stamps,
+                              std::uint32_t stamp) const {
+  stamp_two_rings(welded_vertex, stamps, stamp);
   const BvhHit nearest = walls_bvh_.closest_point_where(
       glm::dvec3(welded_.positions_mm[welded_vertex]), std::numeric_limits<double>::infinity(),
       [&](std::uint32_t primitive) { return stamps[walls_bvh_.triangle(primitive).id] != stamp; });
@@ -228,15 +234,7 @@ float SurfacePatch::clearance_behind(std::uint32_t triangle, std::vector<std::ui
   const glm::vec3 face = glm::cross(p1 - p0, p2 - p0);
   if (!(glm::length(face) > 0.0f)) return clearance_mm_[triangle];
   const glm::vec3 normal = glm::normalize(face), centre = (p0 + p1 + p2) / 3.0f;
-  for (int k = 0; k < 3; ++k) {
-    for (const std::uint32_t t : field_.triangles_around(corner[k])) {
-      for (int j = 0; j < 3; ++j) {
-        for (const std::uint32_t u :
-             field_.triangles_around(welded_.indices[3 * std::size_t(t) + std::size_t(j)]))
-          stamps[u] = stamp;
-      }
-    }
-  }
+  for (int k = 0; k < 3; ++k) stamp_two_rings(corner[k], stamps, stamp);
   constexpr float plane_tolerance_mm = 0.01f;
   const BvhHit nearest = walls_bvh_.closest_point_where(
       glm::dvec3(centre), std::numeric_limits<double>::infinity(), [&](std::uint32_t primitive) {

@@ -91,6 +91,8 @@ class SurfacePatch {
  private:
   SurfacePatch(const Mesh& mesh, PositionGroups groups);
   std::uint32_t closest_triangle(glm::vec3 point_mm) const noexcept;
+  void stamp_two_rings(std::uint32_t welded_vertex, std::vector<std::uint32_t>& stamps,
+                       std::uint32_t stamp) const;
   float clearance(std::uint32_t welded_vertex, std::vector<std::uint32_t>& stamps, std::uint32_t stamp) const;
   float clearance_behind(std::uint32_t triangle, std::vector<std::uint32_t>& stamps,
                          std::uint32_t stamp) const;
