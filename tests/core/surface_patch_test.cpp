@@ -124,22 +124,56 @@ TEST(SurfacePatch, AcrossAFoldOnlyTheStraightLineDentsTheFacingSheet) {
   EXPECT_LT(tilted.x, -0.1f);  // toward -x, where the contact is
 }
 
+// A 60 x 60 mm sheet of `cells` x `cells` squares at height z, facing +z or -z, added to `mesh`.
+void add_sheet(Mesh& mesh, float z, std::size_t cells, bool facing_up) {
+  Mesh sheet = make_grid(60.0f, cells);
+  for (glm::vec3& p : sheet.positions_mm) p.z = z;
+  if (!facing_up) {
+    for (glm::vec3& n : sheet.normals) n = -n;
+    for (std::size_t i = 0; i < sheet.indices.size(); i += 3)
+      std::swap(sheet.indices[i + 1], sheet.indices[i + 2]);
+  }
+  const std::uint32_t first = std::uint32_t(mesh.vertex_count());
+  mesh.positions_mm.insert(mesh.positions_mm.end(), sheet.positions_mm.begin(), sheet.positions_mm.end());
+  mesh.normals.insert(mesh.normals.end(), sheet.normals.begin(), sheet.normals.end());
+  for (const std::uint32_t i : sheet.indices) mesh.indices.push_back(first + i);
+}
+
 // A slab 3 mm thick and open at its sides: two 60 x 60 mm sheets (1 mm cells), the top at z = 1.5
 // facing +z, the bottom at z = -1.5 facing -z. Along the surface the bottom cannot be reached from the top.
 // With `bottom_cells` other than 60 the bottom's vertices do not lie below the top's.
 Mesh make_thin_slab(std::size_t bottom_cells = 60) {
-  Mesh slab = make_grid(60.0f, 60);
-  const std::size_t sheet = slab.vertex_count();
-  Mesh bottom = make_grid(60.0f, bottom_cells);
-  for (glm::vec3& p : slab.positions_mm) p.z = 1.5f;
-  for (glm::vec3& p : bottom.positions_mm) p.z = -1.5f;
-  for (glm::vec3& n : bottom.normals) n = -n;
-  for (std::size_t i = 0; i < bottom.indices.size(); i += 3)
-    std::swap(bottom.indices[i + 1], bottom.indices[i + 2]);
-  slab.positions_mm.insert(slab.positions_mm.end(), bottom.positions_mm.begin(), bottom.positions_mm.end());
-  slab.normals.insert(slab.normals.end(), bottom.normals.begin(), bottom.normals.end());
-  for (const std::uint32_t i : bottom.indices) slab.indices.push_back(std::uint32_t(i + sheet));
+  Mesh slab;
+  add_sheet(slab, 1.5f, 60, true);
+  add_sheet(slab, -1.5f, bottom_cells, false);
   return slab;
+}
+
+// The height above (x, y) of the sheet made of the triangles `mesh.indices[first, end)` with their corners
+// at `moved`; NaN where it has none there. The dents push along z only, so each sheet stays one height
+// over the plane.
+float height_at(const Mesh& mesh, const std::vector<glm::vec3>& moved, glm::vec2 xy, std::size_t first,
+                std::size_t end) {
+  for (std::size_t i = first; i < end; i += 3) {
+    const glm::vec3 a = moved[mesh.indices[i]], b = moved[mesh.indices[i + 1]],
+                    c = moved[mesh.indices[i + 2]];
+    const float area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
+    const float wb = ((xy.x - a.x) * (c.y - a.y) - (xy.y - a.y) * (c.x - a.x)) / area,
+                wc = ((b.x - a.x) * (xy.y - a.y) - (b.y - a.y) * (xy.x - a.x)) / area;
+    if (wb >= -1e-5f && wc >= -1e-5f && wb + wc <= 1.0f + 1e-5f)
+      return a.z + wb * (b.z - a.z) + wc * (c.z - a.z);
+  }
+  return std::numeric_limits<float>::quiet_NaN();
+}
+
+// The mesh's vertices displaced by a press computed by `patch`.
+std::vector<glm::vec3> pressed_positions(const Mesh& mesh, const SurfacePatch& patch, Dent dent) {
+  dent.along_surface = true;
+  dent.normal = patch.contact_normal();
+  std::vector<glm::vec3> moved(mesh.vertex_count());
+  for (std::size_t v = 0; v < moved.size(); ++v)
+    moved[v] = displaced_position(mesh.positions_mm[v], mesh.normals[v], {&dent, 1}, patch.samples()[v]);
+  return moved;
 }
 
 TEST(SurfacePatch, APressDeeperThanTheWallBehindPushesTheWallAhead) {
@@ -199,37 +233,56 @@ TEST(SurfacePatch, WhereTheSheetsDoNotLineUpAFifthOfTheGapStaysEverywhere) {
   const Dent dent = dent_with_slope_limit(Dent{contact, 6.0f, 3.0f}, surface_dent_max_slope);
   SurfacePatch patch(slab);
   patch.compute(-1, contact, SurfacePatch::PushedDent{dent.depth_mm, dent.sigma_mm});
-  Dent along = dent;
-  along.along_surface = true;
-  along.normal = patch.contact_normal();
-  std::vector<glm::vec3> moved(slab.vertex_count());
-  for (std::size_t v = 0; v < moved.size(); ++v)
-    moved[v] = displaced_position(slab.positions_mm[v], slab.normals[v], {&along, 1}, patch.samples()[v]);
-  // The height of the displaced sheet (its triangles from `first` on, to `end`) above (x, y): the push is
-  // along z only.
-  const auto height = [&](glm::vec2 xy, std::size_t first, std::size_t end) {
-    for (std::size_t i = first; i < end; i += 3) {
-      const glm::vec3 a = moved[slab.indices[i]], b = moved[slab.indices[i + 1]],
-                      c = moved[slab.indices[i + 2]];
-      const float area = (b.x - a.x) * (c.y - a.y) - (b.y - a.y) * (c.x - a.x);
-      const float wb = ((xy.x - a.x) * (c.y - a.y) - (xy.y - a.y) * (c.x - a.x)) / area,
-                  wc = ((b.x - a.x) * (xy.y - a.y) - (b.y - a.y) * (xy.x - a.x)) / area;
-      if (wb >= -1e-5f && wc >= -1e-5f && wb + wc <= 1.0f + 1e-5f)
-        return a.z + wb * (b.z - a.z) + wc * (c.z - a.z);
-    }
-    return std::numeric_limits<float>::quiet_NaN();
-  };
+  const std::vector<glm::vec3> moved = pressed_positions(slab, patch, dent);
   const std::size_t top_end = 6 * 60 * 60;
   float least_gap = std::numeric_limits<float>::infinity();
   for (float x = -8.0f; x <= 8.0f; x += 0.2f) {
     for (float y = -8.0f; y <= 8.0f; y += 0.2f) {
       const glm::vec2 xy = glm::vec2(contact) + glm::vec2(x, y);
-      least_gap = std::min(least_gap, height(xy, 0, top_end) - height(xy, top_end, slab.indices.size()));
+      least_gap = std::min(least_gap, height_at(slab, moved, xy, 0, top_end) -
+                                          height_at(slab, moved, xy, top_end, slab.indices.size()));
     }
   }
   EXPECT_LT(least_gap, 1.0f);  // the dent closed the gap that far: the sheets were found
   EXPECT_GE(least_gap, 0.2f * 3.0f - 1.0e-3f);
   std::printf("thin slab, its sheets not lined up, 6 mm press: least gap %.3f mm\n", least_gap);
+}
+
+// A wall that gives way moves toward its own normal's side, ahead of it: it looks there for walls in turn.
+// Three sheets: the pressed one (1 mm cells) facing +z, 5 mm below it a coarse one (3 mm cells) facing -z,
+// and 1 mm below that a fine one facing +z. A 6 mm press moves the middle sheet by about 2 mm, through the
+// top's look; its coarse triangles move as much as their most pressed point needs, more than the top's
+// look asks of the bottom sheet below their other corners, so only the middle sheet's own look keeps the
+// bottom a fifth of its 1 mm away (without it the middle sheet passed 0.76 mm through the bottom).
+TEST(SurfacePatch, AWallGivingWayPushesTheWallAheadOfItInTurn) {
+  Mesh stack;
+  add_sheet(stack, 0.0f, 60, true);
+  const std::size_t middle_first = stack.indices.size();
+  add_sheet(stack, -5.0f, 20, false);
+  const std::size_t bottom_first = stack.indices.size();
+  add_sheet(stack, -6.0f, 60, true);
+  const glm::vec3 contact(0.3f, -0.2f, 0.0f);
+  const Dent dent = dent_with_slope_limit(Dent{contact, 6.0f, 3.0f}, surface_dent_max_slope);
+  SurfacePatch patch(stack);
+  patch.compute(-1, contact, SurfacePatch::PushedDent{dent.depth_mm, dent.sigma_mm});
+  const std::vector<glm::vec3> moved = pressed_positions(stack, patch, dent);
+  float top_gap = std::numeric_limits<float>::infinity(), bottom_gap = top_gap, middle_moved = 0.0f;
+  for (float x = -10.0f; x <= 10.0f; x += 0.2f) {
+    for (float y = -10.0f; y <= 10.0f; y += 0.2f) {
+      const glm::vec2 xy = glm::vec2(contact) + glm::vec2(x, y);
+      const float top = height_at(stack, moved, xy, 0, middle_first),
+                  middle = height_at(stack, moved, xy, middle_first, bottom_first),
+                  bottom = height_at(stack, moved, xy, bottom_first, stack.indices.size());
+      top_gap = std::min(top_gap, top - middle);
+      bottom_gap = std::min(bottom_gap, middle - bottom);
+      middle_moved = std::max(middle_moved, -5.0f - middle);
+    }
+  }
+  EXPECT_GT(middle_moved, 1.5f);  // the middle sheet gave way, enough to close the gap below it
+  EXPECT_GE(top_gap, 0.2f * 5.0f - 1.0e-3f);
+  EXPECT_GE(bottom_gap, 0.2f * 1.0f - 1.0e-3f);
+  std::printf("three sheets, 6 mm press: the middle moved %.3f mm; least gaps %.3f mm above it, %.3f below\n",
+              middle_moved, top_gap, bottom_gap);
 }
 
 // A patch is reused from frame to frame: what a press leaves behind (its pushes, the walls it moved)
