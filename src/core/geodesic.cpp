@@ -113,7 +113,8 @@ float GeodesicField::distance_mm(std::uint32_t vertex) const noexcept {
   return vertex < distance_.size() ? distance_[vertex] : infinity;
 }
 
-void GeodesicField::compute(std::uint32_t triangle, glm::vec3 point_mm, float radius_mm) {
+void GeodesicField::compute(std::uint32_t triangle, glm::vec3 point_mm, float radius_mm,
+                            float second_look_mm) {
   if (std::size_t(triangle) * 3 >= mesh_.indices.size()) {
     throw Error("GeodesicField: triangle " + std::to_string(triangle) + " of " +
                 std::to_string(mesh_.indices.size() / 3));
@@ -150,7 +151,7 @@ void GeodesicField::compute(std::uint32_t triangle, glm::vec3 point_mm, float ra
       }
     }
   }
-  correct();
+  correct(second_look_mm);
 }
 
 // The march fixes a vertex from the triangles whose other corners were fixed before it. Where the front
@@ -167,8 +168,10 @@ void GeodesicField::compute(std::uint32_t triangle, glm::vec3 point_mm, float ra
 // alone brought the largest weight error from 0.038 to 0.022 of p on the Colin27 brain at sigma 2 mm and
 // from 0.15 to 0.018 on the coarse SPM12 cortex; the fresh look at unchecked sources and the queue then
 // cut the contacts over 0.03 of p from 9 to 7 (Colin27: 0.047 to 0.028 at sigma 2 mm, 0.041 to 0.032
-// at sigma 4 mm), for 8-15% of the march (docs/design.md).
-void GeodesicField::correct() {
+// at sigma 4 mm), for 8-15% of the march (docs/design.md). The pass leaves the vertices beyond
+// `within_mm` as the march left them: the edge arrivals are as common far out as near, and the band of
+// vertices after them that the pass lowers widens with the distance.
+void GeodesicField::correct(float within_mm) {
   std::size_t head = 0, count = 0;
   const auto enqueue_neighbours = [&](std::uint32_t v) {
     for (const std::uint32_t t : triangles_around(v)) {
@@ -182,7 +185,7 @@ void GeodesicField::correct() {
     }
   };
   for (const std::uint32_t v : reached_) {
-    if (!along_edge_[v] && !unchecked_[v] && !queued_[v]) continue;
+    if ((!along_edge_[v] && !unchecked_[v] && !queued_[v]) || distance_[v] > within_mm) continue;
     const bool carried_on = along_edge_[v] || queued_[v];
     const float before = distance_[v], after = update_again(v);
     if (std::abs(after - before) > before * 1e-2f) enqueue_neighbours(v);

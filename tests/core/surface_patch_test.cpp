@@ -25,7 +25,9 @@ TEST(SurfacePatch, OnAPlaneTheSamplesAreTheStraightLineDistanceAndDirection) {
   const glm::vec3 contact(0.3f, -0.4f, 0.0f);
   patch.compute(-1, contact, 16.0f);
   EXPECT_NEAR(float(patch.size()), std::numbers::pi_v<float> * 16.0f * 16.0f, 60.0f);
-  float worst_distance = 0.0f, worst_angle_deg = 0.0f;
+  // Within 3/4 of the radius (3 sigma of a dent's 4) the march's second look puts the distances right;
+  // beyond it they are as the march left them, a little long where it came along edges.
+  float worst_distance = 0.0f, worst_tail_share = 0.0f, worst_angle_deg = 0.0f;
   for (std::size_t v = 0; v < grid.vertex_count(); ++v) {
     const glm::vec4 sample = patch.samples()[v];
     const glm::vec3 to_contact = contact - grid.positions_mm[v];
@@ -35,18 +37,25 @@ TEST(SurfacePatch, OnAPlaneTheSamplesAreTheStraightLineDistanceAndDirection) {
       continue;
     }
     if (sample.w == surface_far_mm) continue;  // just beyond the radius along the surface
-    worst_distance = std::max(worst_distance, std::abs(sample.w - straight));
+    if (straight < 11.5f) {
+      worst_distance = std::max(worst_distance, std::abs(sample.w - straight));
+    } else {
+      EXPECT_GT(sample.w, straight - 0.01f) << "vertex " << v;
+      worst_tail_share = std::max(worst_tail_share, (sample.w - straight) / straight);
+    }
     if (straight > 2.0f) {
       const float cosine = std::clamp(glm::dot(glm::vec3(sample), to_contact / straight), -1.0f, 1.0f);
       worst_angle_deg = std::max(worst_angle_deg, std::acos(cosine) * 180.0f / std::numbers::pi_v<float>);
     }
   }
-  // Measured 0.029 mm and 2.2 degrees (0.087 mm and 3.9 degrees marched from the contact triangle's
-  // corners alone, without the ring of seeds around them).
-  EXPECT_LT(worst_distance, 0.06f);
-  EXPECT_LT(worst_angle_deg, 3.5f);
-  std::printf("plane: distance error max %.3f mm, direction error max %.2f deg\n", worst_distance,
-              worst_angle_deg);
+  // Measured 0.005 mm, the tail up to 0.59% long, 1.80 degrees (with the second look out to the radius
+  // 0.029 mm over it all).
+  EXPECT_LT(worst_distance, 0.015f);
+  EXPECT_LT(worst_tail_share, 0.01f);
+  EXPECT_LT(worst_angle_deg, 2.5f);
+  std::printf(
+      "plane: distance error max %.3f mm within 11.5 mm, %.2f%% beyond; direction error max %.2f deg\n",
+      worst_distance, 100.0f * worst_tail_share, worst_angle_deg);
 }
 
 TEST(SurfacePatch, ChangedCoversTheLastPatchAndTheNewOne) {

@@ -15,6 +15,7 @@
 #include <cstdint>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -28,8 +29,11 @@ class GeodesicField {
   explicit GeodesicField(const Mesh& mesh);
 
   // Marches from `point_mm` (on triangle `triangle`, the t-th of Mesh::indices / 3) until the front
-  // passes `radius_mm`. No allocation. Throws palpate::Error for a triangle out of range.
-  void compute(std::uint32_t triangle, glm::vec3 point_mm, float radius_mm);
+  // passes `radius_mm`. The second look after the march (which puts right the vertices the front reached
+  // along an edge, and those after them) stops at `second_look_mm`: where an error of a few percent no
+  // longer matters, as in a dent's tail. No allocation. Throws palpate::Error for a triangle out of range.
+  void compute(std::uint32_t triangle, glm::vec3 point_mm, float radius_mm,
+               float second_look_mm = std::numeric_limits<float>::infinity());
 
   // The vertices within the radius, from the last compute(), in the order the front reached them
   // (nearest first but for the vertices corrected afterwards, moved by a few percent, rarely past the
@@ -51,7 +55,7 @@ class GeodesicField {
   };
   Across across(std::uint32_t triangle, std::uint32_t p, std::uint32_t q) const;
   void update(std::uint32_t vertex, std::uint32_t triangle);
-  void correct();
+  void correct(float within_mm);
   float update_again(std::uint32_t vertex);
   float along_edges(std::uint32_t triangle, int k) const;
   // The update of the triangle's corner k (0-2) from the other two.
