@@ -5,6 +5,7 @@
 
 #include <cstdio>
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "run_command.hpp"
@@ -21,11 +22,13 @@ test::CommandResult run_view(const std::string& folder, const std::string& argum
   screenshot = dir / "view.png";
   // In sanitizer builds: Mesa's GLX driver is unloaded at exit, so LeakSanitizer can neither name nor
   // suppress what it keeps; leaks of palpate's own code are checked by every other test.
-  return test::run_command("cd " + dir.string() +
-                           " && ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" xvfb-run -a -s '-screen 0 "
-                           "1024x768x24' " +
-                           std::string(PALPATE_CLI) + " view --scene phantom --width 800 --height 600 " +
-                           arguments + " --screenshot " + screenshot.string());
+  // Each test looks for a free display from its own number on: two `xvfb-run -a` started at once
+  // can pick 99, and the second Xvfb then fails to start.
+  const std::string first_display = std::to_string(100 + std::hash<std::string>{}(folder) % 800);
+  return test::run_command(
+      "cd " + dir.string() + " && ASAN_OPTIONS=\"$ASAN_OPTIONS:detect_leaks=0\" xvfb-run -a -n " +
+      first_display + " -s '-screen 0 1024x768x24' " + std::string(PALPATE_CLI) +
+      " view --scene phantom --width 800 --height 600 " + arguments + " --screenshot " + screenshot.string());
 }
 
 TEST(ViewCommand, RunsUnderXvfbAndTakesAScreenshot) {
