@@ -169,8 +169,8 @@ void GeodesicField::compute(std::uint32_t triangle, glm::vec3 point_mm, float ra
 // from 0.15 to 0.018 on the coarse SPM12 cortex; the fresh look at unchecked sources and the queue then
 // cut the contacts over 0.03 of p from 9 to 7 (Colin27: 0.047 to 0.028 at sigma 2 mm, 0.041 to 0.032
 // at sigma 4 mm), for 8-15% of the march (docs/design.md). The pass leaves the vertices beyond
-// `within_mm` as the march left them: the edge arrivals are as common far out as near, and the band of
-// vertices after them that the pass lowers widens with the distance.
+// `within_mm` as the march left them, but for the queue: the edge arrivals are as common far out as
+// near, and the band of vertices after them that the pass lowers widens with the distance.
 void GeodesicField::correct(float within_mm) {
   std::size_t head = 0, count = 0;
   const auto enqueue_neighbours = [&](std::uint32_t v) {

@@ -30,8 +30,9 @@ class GeodesicField {
 
   // Marches from `point_mm` (on triangle `triangle`, the t-th of Mesh::indices / 3) until the front
   // passes `radius_mm`. The second look after the march (which puts right the vertices the front reached
-  // along an edge, and those after them) stops at `second_look_mm`: where an error of a few percent no
-  // longer matters, as in a dent's tail. No allocation. Throws palpate::Error for a triangle out of range.
+  // along an edge, and those after them) stops at `second_look_mm` but for the neighbours of a vertex it
+  // changed by over 1%: beyond it a distance may stay a few percent long, as in a dent's tail where that
+  // no longer matters. No allocation. Throws palpate::Error for a triangle out of range.
   void compute(std::uint32_t triangle, glm::vec3 point_mm, float radius_mm,
                float second_look_mm = std::numeric_limits<float>::infinity());
 
