@@ -46,11 +46,18 @@ glm::vec3 centroid(const Mesh& mesh, std::uint32_t t) {
          3.0f;
 }
 
-TEST(Geodesic, OnAJitteredPlaneItIsTheStraightLineDistance) {
-  Mesh grid = make_grid(100.0f, 100);  // 1 mm cells
+// A flat 100 x 100 mm grid of 1 mm cells, its vertices moved in the plane by up to 0.35 mm: triangles of
+// every shape, obtuse ones included.
+Mesh make_jittered_grid() {
+  Mesh grid = make_grid(100.0f, 100);
   std::mt19937 random(7);
   std::uniform_real_distribution<float> jitter(-0.35f, 0.35f);
   for (glm::vec3& p : grid.positions_mm) p += glm::vec3(jitter(random), jitter(random), 0.0f);
+  return grid;
+}
+
+TEST(Geodesic, OnAJitteredPlaneItIsTheStraightLineDistance) {
+  const Mesh grid = make_jittered_grid();
   const std::uint32_t middle = std::uint32_t(grid.triangle_count() / 2 + 50);
   const glm::vec3 point = centroid(grid, middle);
   const Errors errors =
@@ -68,10 +75,7 @@ TEST(Geodesic, OnAJitteredPlaneItIsTheStraightLineDistance) {
 // within it the distances are as good as with the whole pass, beyond it as the march left them, long
 // by a few percent where the front came along edges, never short.
 TEST(Geodesic, TheSecondLookStopsWhereItIsTold) {
-  Mesh grid = make_grid(100.0f, 100);  // 1 mm cells
-  std::mt19937 random(7);
-  std::uniform_real_distribution<float> jitter(-0.35f, 0.35f);
-  for (glm::vec3& p : grid.positions_mm) p += glm::vec3(jitter(random), jitter(random), 0.0f);
+  const Mesh grid = make_jittered_grid();
   const std::uint32_t middle = std::uint32_t(grid.triangle_count() / 2 + 50);
   const glm::vec3 point = centroid(grid, middle);
   GeodesicField field(grid);

@@ -194,15 +194,10 @@ TEST(SurfacePatch, APressDeeperThanTheWallBehindPushesTheWallAhead) {
   // The smallest gap left between the sheets along any vertical line, and how far the bottom moved
   // where the top's dent is below a tenth of p.
   const auto gaps = [&](const Dent& pressed) {
-    Dent along = pressed;
-    along.along_surface = true;
-    along.normal = patch.contact_normal();
+    const std::vector<glm::vec3> moved = pressed_positions(slab, patch, pressed);
     float least_gap = 1.0e9f, far_bottom_moved = 0.0f;
     for (std::size_t v = 0; v < sheet; ++v) {
-      const glm::vec3 top =
-          displaced_position(slab.positions_mm[v], slab.normals[v], {&along, 1}, patch.samples()[v]);
-      const glm::vec3 bottom = displaced_position(slab.positions_mm[v + sheet], slab.normals[v + sheet],
-                                                  {&along, 1}, patch.samples()[v + sheet]);
+      const glm::vec3 top = moved[v], bottom = moved[v + sheet];
       least_gap = std::min(least_gap, top.z - bottom.z);
       if (1.5f - top.z < 0.1f * pressed.depth_mm)
         far_bottom_moved = std::max(far_bottom_moved, -1.5f - bottom.z);
