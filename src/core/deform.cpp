@@ -30,7 +30,7 @@ DentReach dent_reach(const Dent& dent, bool first, glm::vec3 v, glm::vec4 sample
   const float straight = glm::length(to_contact);
   if (!(first && dent.along_surface)) return {straight, to_contact};
   // What the shaders interpolate (deform.hpp), here at the vertex itself.
-  const float along = std::max(sample.w, straight);
+  const float along = sample.w;
   const glm::vec4 beyond_straight(glm::vec3(sample) * along - to_contact, along - straight);
   return {straight + beyond_straight.w, to_contact + glm::vec3(beyond_straight)};
 }

@@ -39,7 +39,7 @@ constexpr std::string_view functions =
 vec4 palpate_surface_varying(vec3 position, vec4 surface) {
   vec3 to_contact = palpate_dent_center_depth[0].xyz - position;
   float e = length(to_contact);
-  float along = max(surface.w, e);
+  float along = surface.w;
   return vec4(surface.xyz * along - to_contact, along - e);
 }
 

@@ -230,6 +230,33 @@ TEST_F(DentedSphere, AlongTheSurfaceTheGpuEqualsTheCpuReference) {
   EXPECT_GT(largest_change, 0.05f);  // the surface distance does change the dent here
 }
 
+// A wall that gives way further than the straight line's Gaussian would move it has a sample shorter than
+// the straight line (SurfacePatch::PushedDent); both take it as it is. Here every sample of the patch is
+// made 0.7 of its distance.
+TEST_F(DentedSphere, ASampleShorterThanTheStraightLineIsTakenAsItIsOnBoth) {
+  SurfacePatch patch(mesh);
+  patch.compute(-1, dents[0].center_mm, dent_cutoff_sigmas * dents[0].sigma_mm);
+  std::vector<glm::vec4> shorter(patch.samples().begin(), patch.samples().end());
+  for (glm::vec4& sample : shorter)
+    if (sample.w != surface_far_mm) sample.w *= 0.7f;
+  Dent along = dents[0];
+  along.along_surface = true;
+  along.normal = glm::normalize(glm::vec3(0.2f, -1.0f, 0.1f));
+  const Captured gpu = capture(mesh, {&along, 1}, 1, "450 core", shorter);
+  float worst_displacement = 0.0f, largest_change = 0.0f;
+  for (std::size_t i = 0; i < mesh.vertex_count(); ++i) {
+    const glm::vec3 v = mesh.positions_mm[i], n = glm::normalize(mesh.normals[i]);
+    const glm::vec3 cpu = displaced_position(v, n, {&along, 1}, shorter[i]);
+    worst_displacement = std::max(worst_displacement, glm::distance(gpu.displaced[i], cpu) / 4.0f);
+    largest_change = std::max(largest_change,
+                              glm::distance(cpu, displaced_position(v, n, {&along, 1}, patch.samples()[i])));
+  }
+  EXPECT_LE(worst_displacement, 1e-5f);
+  EXPECT_GT(largest_change, 0.1f);  // the shorter samples move the vertices further
+  std::printf("shorter samples: gpu against cpu %.2e, moved further by up to %.3f mm\n", worst_displacement,
+              largest_change);
+}
+
 TEST_F(DentedSphere, FewerSlotsThanDentsIgnoreTheRest) {
   const Captured gpu = capture(mesh, dents, 1);
   const std::span<const Dent> first(dents.data(), 1);

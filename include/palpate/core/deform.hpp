@@ -14,10 +14,12 @@
 // inside a triangle, that distance would overestimate near the contact (the distance is a cone there,
 // the interpolation a plane), so the shaders interpolate what the surface adds to the straight line
 // instead: with s the sample's distance, u its direction, e = |V - c| and VC = c - V at the vertex,
-//     beyond = (u max(s, e) - VC, max(s, e) - e),     d = |P - c| + beyond.w,   toward = (c - P) + beyond.xyz
-// at a point P, `beyond` interpolated from the corners: at a vertex d = max(s, e) exactly, near the
-// contact (where the surface is the contact's plane) beyond is zero and d the straight line, and d is
-// never shorter than the straight line. The tilt of the normal follows `toward` (w'(d) times the
+//     beyond = (u s - VC, s - e),     d = |P - c| + beyond.w,   toward = (c - P) + beyond.xyz
+// at a point P, `beyond` interpolated from the corners: at a vertex d = s exactly, near the contact
+// (where the surface is the contact's plane) beyond is zero and d the straight line. SurfacePatch writes
+// s >= e at every vertex it reaches along the surface, so there d is never shorter than the straight
+// line; only where a wall behind the dent gives way further than the straight line's Gaussian would move
+// it is s < e (SurfacePatch::PushedDent). The tilt of the normal follows `toward` (w'(d) times the
 // distance's gradient). Only the first dent of an object can fall off along the surface (one patch per
 // object); later dents use the straight line.
 // Such a dent also pushes every vertex one way, along -`normal` (the contact's outward normal), as

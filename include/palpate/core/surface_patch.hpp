@@ -49,14 +49,17 @@ class SurfacePatch {
   // a wall along the push, the wall there moves at least G - 0.8 t (exactly, over the two triangles'
   // overlap seen along the push): the wall gives way ahead of the dent, keeping a fifth of the gap, and
   // so do walls behind it in turn. A triangle the pushes would turn over has its corners further along
-  // the push raised. No vertex moves past the straight line's Gaussian; its distance becomes the one at
-  // which the dent's Gaussian gives its push: between the straight line and the distance along the
-  // surface, so the shaders need nothing more.
+  // the push raised. No vertex moves past the straight line's Gaussian at wall_reach_edges of its longest
+  // edges nearer the contact; its distance becomes the one at which the dent's Gaussian gives its push:
+  // shorter than the distance along the surface, and shorter than the straight line only at a wall's
+  // vertex that gives way further than the straight line's Gaussian would move it, so the shaders need
+  // nothing more.
   struct PushedDent {
     float depth_mm = 0.0f, sigma_mm = 0.0f;
     bool operator==(const PushedDent&) const = default;
   };
   static constexpr float wall_gap_slope = 0.8f;
+  static constexpr float wall_reach_edges = 2.0f;
 
   // Copies what it needs of `mesh` (its positions and triangles, welded by position) and builds a BVH of
   // it for the walls, with each triangle's clearances, all round and behind it (0.8-0.85 s for the 137,854
@@ -127,6 +130,7 @@ class SurfacePatch {
   std::vector<float>
       clearance_mm_;  // per welded triangle: how near the nearest triangle beyond its corners' two rings
   std::vector<float> back_clearance_mm_;  // per welded triangle: the same, behind its plane
+  std::vector<float> longest_edge_mm_;    // per welded vertex
   std::vector<float> distance_mm_;        // per welded vertex: the sample's distance; +inf outside the patch
   std::vector<float> push_mm_;            // per welded vertex, scratch: what the dent moves it by
   std::vector<std::uint32_t> pending_;    // per welded vertex, scratch: a ring of vertices to cast from
@@ -147,7 +151,8 @@ class SurfacePatch {
     std::uint32_t size() const noexcept { return std::uint32_t(triangle.size()); }
   };
   struct Cluster {
-    glm::vec3 low, high;  // bounds of its triangles
+    glm::vec3 low, high;    // bounds of its triangles
+    float longest_edge_mm;  // of their corners
   };
   std::vector<Cluster> clusters_;
   std::vector<std::uint32_t> cluster_of_;     // per welded triangle
