@@ -337,21 +337,23 @@ glm::vec3 barycentric(glm::vec2 x, glm::vec2 a, glm::vec2 b, glm::vec2 c) {
 }  // namespace
 
 // The least push every corner of `wall` needs so that the triangle `front`, pushed, keeps a fifth of its
-// gap to it wherever it lies behind `front` along the push. Pushed one way, the two can only meet on a
-// line along the push, and over the overlap of their outlines seen along it the gap between them is
-// linear: it is enough to keep it at the overlap's corners (a corner of one inside the other, or two
-// edges crossing). -inf where the outlines do not overlap or `wall` is not behind.
-float SurfacePatch::least_wall_push(const Corners& front, const Corners& wall) const noexcept {
+// gap to it wherever it lies behind `front` along the push (and the push that keeps 0.15 of it). Pushed one
+// way, the two can only meet on a line along the push, and over the overlap of their outlines seen along it
+// the gap between them is linear: it is enough to keep it at the overlap's corners (a corner of one inside
+// the other, or two edges crossing). -inf where the outlines do not overlap or `wall` is not behind.
+SurfacePatch::WallPush SurfacePatch::least_wall_push(const Corners& front,
+                                                     const Corners& wall) const noexcept {
+  constexpr WallPush none{-std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
   // Most triangles near the front are not behind it, or their outlines miss its own: cheap to see.
   const auto lowest = [](const float* values) { return std::min({values[0], values[1], values[2]}); };
   const auto highest = [](const float* values) { return std::max({values[0], values[1], values[2]}); };
-  if (highest(wall.depth) <= lowest(front.depth)) return -std::numeric_limits<float>::infinity();
+  if (highest(wall.depth) <= lowest(front.depth)) return none;
   const glm::vec2 front_low = glm::min(glm::min(front.outline[0], front.outline[1]), front.outline[2]),
                   front_high = glm::max(glm::max(front.outline[0], front.outline[1]), front.outline[2]),
                   wall_low = glm::min(glm::min(wall.outline[0], wall.outline[1]), wall.outline[2]),
                   wall_high = glm::max(glm::max(wall.outline[0], wall.outline[1]), wall.outline[2]);
   if (glm::any(glm::greaterThan(front_low, wall_high)) || glm::any(glm::greaterThan(wall_low, front_high)))
-    return -std::numeric_limits<float>::infinity();
+    return none;
   struct Meeting {
     float front_depth, front_push, wall_depth;
   };
@@ -385,13 +387,14 @@ float SurfacePatch::least_wall_push(const Corners& front, const Corners& wall) c
                            wall.depth[j] + b * (wall.depth[j2] - wall.depth[j])};
     }
   }
-  float least = -std::numeric_limits<float>::infinity();
+  WallPush push = none;
   for (int m = 0; m < count; ++m) {
     const float gap = meetings[m].wall_depth - meetings[m].front_depth;
-    if (gap <= 0.0f) return -std::numeric_limits<float>::infinity();  // not behind
-    least = std::max(least, meetings[m].front_push - wall_gap_slope * gap);
+    if (gap <= 0.0f) return none;  // not behind
+    push.least = std::max(push.least, meetings[m].front_push - wall_gap_slope * gap);
+    push.enough = std::max(push.enough, meetings[m].front_push - wall_gap_slope_enough * gap);
   }
-  return least;
+  return push;
 }
 
 // Every triangle that a triangle of `cluster` could reach along the push this press: its pushes are at most
@@ -504,7 +507,7 @@ void SurfacePatch::give_way(glm::vec3 point_mm, PushedDent dent) noexcept {
     push_mm_[v] = dent_gaussian(distance_mm_[v], dent.depth_mm, dent.sigma_mm);
     enqueue(v);
   }
-  const auto raise = [&](std::uint32_t v, float needed) {
+  const auto raise = [&](std::uint32_t v, float needed, float enough) {
     if (std::isinf(distance_mm_[v])) {
       if (needed <= least_push) return;
       push_mm_[v] = 0.0f;
@@ -518,7 +521,7 @@ void SurfacePatch::give_way(glm::vec3 point_mm, PushedDent dent) noexcept {
                                                          wall_reach_edges * longest_edge_mm_[v],
                                                      0.0f),
                                             dent.depth_mm, dent.sigma_mm));
-    if (push_mm_[v] >= needed || needed <= least_push) return;
+    if (push_mm_[v] >= std::min(needed, enough) || needed <= least_push) return;
     push_mm_[v] = needed;
     enqueue(v);
   };
@@ -535,7 +538,7 @@ void SurfacePatch::give_way(glm::vec3 point_mm, PushedDent dent) noexcept {
     if (!(rising > 0.0f)) return true;
     const float more = (kept - upright) / rising;
     for (int k = 0; k < 3; ++k)
-      if (along[k] > 0.0f) raise(c.vertex[k], c.push[k] + more);
+      if (along[k] > 0.0f) raise(c.vertex[k], c.push[k] + more, c.push[k] + more);
     return true;
   };
   // Pushes only grow, and never past the straight line's Gaussian, so the walk settles; the bound only
@@ -576,8 +579,8 @@ void SurfacePatch::give_way(glm::vec3 point_mm, PushedDent dent) noexcept {
         if (shares_a_corner |
             (most <= std::max(least_push, std::min({push_mm_[w[0]], push_mm_[w[1]], push_mm_[w[2]]}))))
           continue;
-        const float least = least_wall_push(front, corners_of(u, frame));
-        for (int k = 0; k < 3; ++k) raise(w[k], least);
+        const WallPush push = least_wall_push(front, corners_of(u, frame));
+        for (int k = 0; k < 3; ++k) raise(w[k], push.least, push.enough);
       }
     }
   }
