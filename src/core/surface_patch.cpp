@@ -541,8 +541,7 @@ void SurfacePatch::give_way(glm::vec3 point_mm, PushedDent dent) noexcept {
       if (along[k] > 0.0f) raise(c.vertex[k], c.push[k] + more, c.push[k] + more);
     return true;
   };
-  // Pushes only grow, and never past the straight line's Gaussian, so the walk settles; the bound only
-  // guards it.
+  // Pushes only grow, and never past their cap, so the walk settles; the bound only guards it.
   for (std::size_t steps = 0; count > 0 && steps < 16 * ring; ++steps) {
     const std::uint32_t y = pending_[head];
     head = (head + 1) % ring, --count;
@@ -551,8 +550,8 @@ void SurfacePatch::give_way(glm::vec3 point_mm, PushedDent dent) noexcept {
       if ((unsettled_[t] & unsettled) == 0) continue;
       unsettled_[t] = 0;
       const Corners front = corners_of(t, frame);
-      // A triangle raised to stay upright is looked at again; one the straight line's Gaussian held
-      // back stays marked for the sweeps below.
+      // A triangle raised to stay upright is looked at again; one the cap on its corners held back
+      // stays marked for the sweeps below.
       if (keep_upright(front)) unsettled_[t] |= turning_over;
       const float reach_mm = std::max({front.push[0], front.push[1], front.push[2]}) / wall_gap_slope;
       // Pushed against its normal's side (its outline seen along the push turns clockwise), it sweeps
@@ -584,7 +583,7 @@ void SurfacePatch::give_way(glm::vec3 point_mm, PushedDent dent) noexcept {
       }
     }
   }
-  // Where the straight line's Gaussian stopped the raises of keep_upright (a sliver whose corners'
+  // Where the cap on each corner stopped the raises of keep_upright (a sliver whose corners'
   // distances disagree), the corners the other way move back instead; in a few sweeps, as moving one
   // back can tip a neighbour over (moving back inside the walk above undoes raises it then redoes). Only
   // triangles marked turning over can be: each is so marked when a corner of it moves back.

@@ -61,8 +61,8 @@ class SurfacePatch {
   static constexpr float wall_gap_slope = 0.8f;
   // A wall's corner is left where it is when it keeps 0.15 of the gap: two walls that each lie behind
   // the other somewhere (sheets nearly along the push) raised each other in turn by ever smaller steps,
-  // each 0.72 of the one before, 50 times a vertex (the SPM12 cortex's slowest press at 3 sigma, 16 ms
-  // against 5 ms).
+  // each 0.72 of the one before, 50 times a vertex (the slowest of the tests' 20 presses of 3 sigma on
+  // the SPM12 cortex: 16 ms, 5 ms with it).
   static constexpr float wall_gap_slope_enough = 0.85f;
   static constexpr float wall_reach_edges = 2.0f;
 
