@@ -10,7 +10,10 @@
 namespace palpate::gl {
 namespace {
 
-// GLFW is process-wide: initialised with the first window, terminated with the last.
+// GLFW is process-wide: initialised with the first window, terminated with the last. A window that
+// fails to open leaves it initialised: terminated, it closes the X connection, and an X server whose
+// last client leaves resets, refusing the next connection for a moment (under Xvfb, the quad-buffer
+// fallback's second window then failed 7 times in 16 with "Failed to open display").
 std::mutex glfw_mutex;
 int glfw_windows = 0;
 
@@ -41,7 +44,6 @@ Window::Window(const WindowParams& options) : state_(std::make_unique<State>()) 
   state_->window = glfwCreateWindow(options.width, options.height, options.title.c_str(), nullptr, nullptr);
   if (!state_->window) {
     const std::string why = glfw_error();
-    if (glfw_windows == 0) glfwTerminate();
     throw Error("cannot open a " + std::to_string(options.width) + "x" + std::to_string(options.height) +
                 " window with an OpenGL 4.5 core context" +
                 (options.stereo ? std::string(" and left and right back buffers (stereo)") : std::string()) +
