@@ -75,14 +75,21 @@ SurfacePatch::SurfacePatch(const Mesh& mesh, PositionGroups groups)
   // A triangle's: a point of it lies within its longest edge over sqrt(3) of a corner (the equilateral's
   // centre is the worst case). Measured at a 1 mm press (Colin27, sigma 4 mm): with it a quarter of the
   // dent's triangles look behind them, with the whole longest edge 83%.
+  // Each vertex's longest edge too (wall_push_cap).
   clearance_mm_.resize(welded_.triangle_count());
+  longest_edge_mm_.assign(groups.count, 0.0f);
   for (std::size_t t = 0; t < clearance_mm_.size(); ++t) {
     const std::uint32_t* c = &welded_.indices[3 * t];
-    const glm::vec3 p0 = welded_.positions_mm[c[0]], p1 = welded_.positions_mm[c[1]],
-                    p2 = welded_.positions_mm[c[2]];
+    float edge[3];
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t a = c[k], b = c[(k + 1) % 3];
+      edge[k] = glm::distance(welded_.positions_mm[a], welded_.positions_mm[b]);
+      longest_edge_mm_[a] = std::max(longest_edge_mm_[a], edge[k]);
+      longest_edge_mm_[b] = std::max(longest_edge_mm_[b], edge[k]);
+    }
     clearance_mm_[t] =
         std::min({vertex_clearance_mm[c[0]], vertex_clearance_mm[c[1]], vertex_clearance_mm[c[2]]}) -
-        std::max({glm::distance(p0, p1), glm::distance(p1, p2), glm::distance(p2, p0)}) / std::sqrt(3.0f);
+        std::max({edge[0], edge[1], edge[2]}) / std::sqrt(3.0f);
   }
   // And looking only behind: a triangle pushed against its own normal's side sweeps only the half-space
   // behind its plane, where the nearest other triangle is often further (a crown's facing gyrus lies
@@ -90,15 +97,6 @@ SurfacePatch::SurfacePatch(const Mesh& mesh, PositionGroups groups)
   back_clearance_mm_.resize(welded_.triangle_count());
   for (std::uint32_t t = 0; t < back_clearance_mm_.size(); ++t)
     back_clearance_mm_[t] = clearance_behind(t, stamps, groups.count + 1 + t);
-  longest_edge_mm_.assign(groups.count, 0.0f);
-  for (std::size_t t = 0; 3 * t < welded_.indices.size(); ++t) {
-    for (int k = 0; k < 3; ++k) {
-      const std::uint32_t a = welded_.indices[3 * t + k], b = welded_.indices[3 * t + (k + 1) % 3];
-      const float length = glm::distance(welded_.positions_mm[a], welded_.positions_mm[b]);
-      longest_edge_mm_[a] = std::max(longest_edge_mm_[a], length);
-      longest_edge_mm_[b] = std::max(longest_edge_mm_[b], length);
-    }
-  }
   assign_clusters();
   distance_mm_.assign(groups.count, std::numeric_limits<float>::infinity());
   push_mm_.assign(groups.count, 0.0f);
@@ -397,15 +395,23 @@ SurfacePatch::WallPush SurfacePatch::least_wall_push(const Corners& front,
   return push;
 }
 
+// The most a vertex `distance_mm` from the contact, with edges up to `longest_edge_mm`, moves: the
+// straight line's Gaussian two of its longest edges nearer the contact. A coarse wall's triangle lies
+// behind the dent's deepest part where its corners are far from the contact (on the SPM12 cortex, capped
+// at each corner's own, 30 of 20 presses of 2 sigma left triangles crossing).
+float SurfacePatch::wall_push_cap(float distance_mm, float longest_edge_mm, PushedDent dent) noexcept {
+  return dent_gaussian(std::max(distance_mm - wall_reach_edges * longest_edge_mm, 0.0f), dent.depth_mm,
+                       dent.sigma_mm);
+}
+
 // Every triangle that a triangle of `cluster` could reach along the push this press: its pushes are at most
-// the straight line's Gaussian at the cluster's bounds.
+// wall_push_cap at the cluster's bounds.
 void SurfacePatch::gather_walls(std::uint32_t cluster, glm::vec3 point_mm, PushedDent dent,
                                 const Frame& frame) noexcept {
   const Cluster& c = clusters_[cluster];
-  const float nearest = std::max(
-      glm::distance(glm::clamp(point_mm, c.low, c.high), point_mm) - wall_reach_edges * c.longest_edge_mm,
-      0.0f);
-  const float reach_mm = dent_gaussian(nearest, dent.depth_mm, dent.sigma_mm) / wall_gap_slope;
+  const float reach_mm =
+      wall_push_cap(glm::distance(glm::clamp(point_mm, c.low, c.high), point_mm), c.longest_edge_mm, dent) /
+      wall_gap_slope;
   const glm::vec3 swept = frame.push * reach_mm;
   cluster_press_[cluster] = press_number_;
   cluster_first_[cluster] = wall_candidates_.size();
@@ -514,13 +520,8 @@ void SurfacePatch::give_way(glm::vec3 point_mm, PushedDent dent) noexcept {
       distance_mm_[v] = std::numeric_limits<float>::max();  // in the patch from now on
       patch_.push_back(v);
     }
-    // At most the straight-line Gaussian two of its longest edges nearer the contact: a coarse wall's
-    // triangle lies behind the dent's deepest part where its corners are far from the contact (on the
-    // SPM12 cortex, capped at each corner's own, 30 of 20 presses of 2 sigma left triangles crossing).
-    needed = std::min(needed, dent_gaussian(std::max(glm::distance(welded_.positions_mm[v], point_mm) -
-                                                         wall_reach_edges * longest_edge_mm_[v],
-                                                     0.0f),
-                                            dent.depth_mm, dent.sigma_mm));
+    needed = std::min(
+        needed, wall_push_cap(glm::distance(welded_.positions_mm[v], point_mm), longest_edge_mm_[v], dent));
     if (push_mm_[v] >= std::min(needed, enough) || needed <= least_push) return;
     push_mm_[v] = needed;
     enqueue(v);

@@ -118,6 +118,7 @@ class SurfacePatch {
     float least, enough;
   };
   WallPush least_wall_push(const Corners& front, const Corners& wall) const noexcept;
+  static float wall_push_cap(float distance_mm, float longest_edge_mm, PushedDent dent) noexcept;
   void upright_share(const Corners& c, const Frame& frame, float along[3], float& upright) const noexcept;
   void give_way(glm::vec3 point_mm, PushedDent dent) noexcept;
   void assign_clusters();
