@@ -181,18 +181,25 @@ FoldCounts count_folds(const Mesh& undeformed, const Mesh& deformed, glm::vec3 c
   return counts;
 }
 
+std::vector<PressSite> spread_press_sites(const Mesh& mesh, std::size_t count) {
+  std::vector<PressSite> sites(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint32_t triangle = std::uint32_t((101 + i * 7919) % mesh.triangle_count());
+    sites[i] = {triangle, (mesh.positions_mm[mesh.indices[3 * triangle]] +
+                           mesh.positions_mm[mesh.indices[3 * triangle + 1]] +
+                           mesh.positions_mm[mesh.indices[3 * triangle + 2]]) /
+                              3.0f};
+  }
+  return sites;
+}
+
 FoldCounts folds_of_presses(const Mesh& mesh, bool walls_give_way, float depth_over_sigma,
                             std::size_t presses) {
   constexpr float sigma_mm = 4.0f;
   SurfacePatch patch(mesh);
   Mesh deformed;
   FoldCounts total;
-  for (std::size_t i = 0; i < presses; ++i) {
-    const std::uint32_t triangle = std::uint32_t((101 + i * 7919) % mesh.triangle_count());
-    const glm::vec3 point =
-        (mesh.positions_mm[mesh.indices[3 * triangle]] + mesh.positions_mm[mesh.indices[3 * triangle + 1]] +
-         mesh.positions_mm[mesh.indices[3 * triangle + 2]]) /
-        3.0f;
+  for (const auto& [triangle, point] : spread_press_sites(mesh, presses)) {
     Dent dent =
         dent_with_slope_limit(Dent{point, depth_over_sigma * sigma_mm, sigma_mm}, surface_dent_max_slope);
     if (walls_give_way) {

@@ -15,6 +15,7 @@
 #include "palpate/core/deform.hpp"
 #include "palpate/core/phantom.hpp"
 #include "palpate/core/shapes.hpp"
+#include "palpate/testing/surface_checks.hpp"
 #include "palpate/testing/test_shapes.hpp"
 
 namespace palpate {
@@ -66,12 +67,7 @@ TEST(SurfacePatch, AlongTheSurfaceASampleIsNeverShorterThanTheStraightLine) {
   const Mesh brain = make_brain_phantom();
   SurfacePatch patch(brain);
   std::size_t shorter = 0, samples = 0;
-  for (std::size_t i = 0; i < 200; ++i) {
-    const std::uint32_t triangle = std::uint32_t((101 + i * 7919) % brain.triangle_count());
-    const glm::vec3 point = (brain.positions_mm[brain.indices[3 * triangle]] +
-                             brain.positions_mm[brain.indices[3 * triangle + 1]] +
-                             brain.positions_mm[brain.indices[3 * triangle + 2]]) /
-                            3.0f;
+  for (const auto& [triangle, point] : testing::spread_press_sites(brain, 200)) {
     patch.compute(triangle, point, 16.0f);
     for (std::size_t v = 0; v < brain.vertex_count(); ++v) {
       if (patch.samples()[v].w == surface_far_mm) continue;

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <functional>
 #include <glm/vec3.hpp>
+#include <vector>
 
 #include "palpate/core/mesh.hpp"
 
@@ -33,9 +34,16 @@ struct FoldCounts {
 };
 FoldCounts count_folds(const Mesh& undeformed, const Mesh& deformed, glm::vec3 center_mm, float radius_mm);
 
+// `count` triangles spread over `mesh` (the same for every run), each with its centroid.
+struct PressSite {
+  std::uint32_t triangle;
+  glm::vec3 point_mm;
+};
+std::vector<PressSite> spread_press_sites(const Mesh& mesh, std::size_t count);
+
 // Presses of depth `depth_over_sigma` sigma (4 mm, widened as the renderer widens it) at the centroids
-// of `presses` triangles spread over `mesh`, falling off along the surface, with the walls behind the
-// dent giving way (SurfacePatch::PushedDent) or not; their folds summed.
+// of `presses` triangles spread over `mesh` (spread_press_sites), falling off along the surface, with the
+// walls behind the dent giving way (SurfacePatch::PushedDent) or not; their folds summed.
 FoldCounts folds_of_presses(const Mesh& mesh, bool walls_give_way, float depth_over_sigma,
                             std::size_t presses);
 
