@@ -24,6 +24,7 @@
 #include "palpate/gl/deform_glsl.hpp"
 #include "palpate/gl/shader_program.hpp"
 #include "render_shaders.hpp"
+#include "side_thread.hpp"
 #include "triangle_clusters.hpp"
 
 namespace palpate::gl {
@@ -251,14 +252,16 @@ struct SurfaceFalloff {
   SurfaceFalloff(const SurfaceFalloff&) = delete;
   SurfaceFalloff& operator=(const SurfaceFalloff&) = delete;
 
-  // Marches from `dent` (world) on `triangle` (the object's, in the renderer's order; -1: unknown) and
-  // uploads what changed; the dent then falls off along the surface, pushing every vertex against the
-  // contact triangle's normal, widened where its slope would pass surface_dent_max_slope, and walls it
-  // would pass through give way. The transform is rigid: depth and sigma are the same in the object frame.
-  void update(Dent& dent, const glm::mat4& transform, std::int64_t triangle) {
-    dent = dent_with_slope_limit(dent, surface_dent_max_slope);
+  // Marches from `dent` (world, widened by dent_with_slope_limit) on `triangle` (the object's, in the
+  // renderer's order; -1: unknown): the dent falls off along the surface, pushing every vertex against the
+  // contact triangle's normal, and walls it would pass through give way. The transform is rigid: depth and
+  // sigma are the same in the object frame. No GL: it may run on another thread.
+  void compute(const Dent& dent, const glm::mat4& transform, std::int64_t triangle) noexcept {
     const glm::vec3 point = glm::vec3(glm::inverse(transform) * glm::vec4(dent.center_mm, 1.0f));
     patch.compute(triangle, point, SurfacePatch::PushedDent{dent.depth_mm, dent.sigma_mm});
+  }
+  // Uploads what compute() changed, and makes the dent one along the surface.
+  void upload(Dent& dent, const glm::mat4& transform) {
     const SurfacePatch::Range changed = patch.changed();
     if (changed.count > 0) {
       glNamedBufferSubData(buffer, static_cast<GLintptr>(changed.first * sizeof(glm::vec4)),
@@ -335,6 +338,8 @@ struct Renderer::State {
   std::unique_ptr<ProxyProgram> proxy_program;
   std::vector<std::unique_ptr<RenderObject>> objects;
   std::vector<std::size_t> draw_order;  // enclosing objects first
+  // Made on the first geodesic draw; the last member, so that it stops before what its task reads goes.
+  std::unique_ptr<SideThread> side_thread;
 
   // The program for `dents` dents (0: the plain program).
   const Program& program(int dents, Shading shading, bool vertex_colors) const {
@@ -650,10 +655,13 @@ void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection,
     const std::span<const Dent> object_dents(object.dents.data(),
                                              static_cast<std::size_t>(object.dent_count));
     if (object.dent_count > 0) ++result.deformed_objects;
-    const bool along_surface = object.material.falloff == Falloff::geodesic && object.surface;
-    if (object.dent_count > 0 && along_surface && options.deformation != Deformation::none) {
-      object.surface->update(object.dents[0], object.transform, object.first_dent_triangle);
-    }
+    const bool along_surface = object.material.falloff == Falloff::geodesic && object.surface &&
+                               object.dent_count > 0 && options.deformation != Deformation::none;
+    // Widened before anything reads how far it reaches.
+    if (along_surface) object.dents[0] = dent_with_slope_limit(object.dents[0], surface_dent_max_slope);
+    const auto march = [&object]() noexcept {
+      object.surface->compute(object.dents[0], object.transform, object.first_dent_triangle);
+    };
 
     if (object.dent_count == 0 || options.deformation == Deformation::none) {
       plain.set_object(object.transform, object.material.color);
@@ -661,6 +669,10 @@ void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection,
       glBindVertexArray(object.gpu->vertex_array);
       draw_all(*object.gpu);
     } else if (options.deformation == Deformation::cpu_naive) {
+      if (along_surface) {
+        march();
+        object.surface->upload(object.dents[0], object.transform);
+      }
       deform_mesh(object.mesh, object.transform, object_dents, object.deformed,
                   along_surface ? object.surface->patch.samples() : std::span<const glm::vec4>());
       if (!object.naive) {
@@ -676,18 +688,33 @@ void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection,
       draw_all(*object.gpu);
     } else {
       const Program& deform = program(object.dent_count, options.shading, colors);
-      object.dent_buffer.update(object_dents);
       deform.set_object(object.transform, object.material.color);
       glBindVertexArray(object.gpu->vertex_array);
+      // The side thread marches the patch while this one draws what no dent reaches (on llvmpipe this
+      // thread runs that draw's vertex stage), and the GPU goes on with it while this one waits.
+      const bool beside = along_surface && options.skip_unreached;
+      if (beside) {
+        if (!side_thread) side_thread = std::make_unique<SideThread>();
+        side_thread->start(march);
+      } else if (along_surface) {
+        march();
+      }
       if (options.skip_unreached) {
         classify_clusters(object);
         plain.set_object(object.transform, object.material.color);
         glUseProgram(plain.program.id());
         object.unreached.draw();
-        glUseProgram(deform.program.id());
+      }
+      if (beside) {
+        glFlush();
+        side_thread->wait();
+      }
+      if (along_surface) object.surface->upload(object.dents[0], object.transform);
+      object.dent_buffer.update(object_dents);
+      glUseProgram(deform.program.id());
+      if (options.skip_unreached) {
         object.reached.draw();
       } else {
-        glUseProgram(deform.program.id());
         draw_all(*object.gpu);
       }
     }

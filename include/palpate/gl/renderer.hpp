@@ -10,9 +10,11 @@
 // explicitly. At most max_dents apply to one object; the rest are dropped and counted.
 //
 // An object whose Material::falloff is geodesic spreads its first dent along its surface: each frame the
-// renderer marches over the patch that dent reaches (SurfacePatch: about 0.1 to 1 ms on one core, see
+// renderer marches over the patch that dent reaches (SurfacePatch: about 0.1 to 5 ms on one core, see
 // docs/benchmarks.md) and uploads the vertices it changed; further dents on the object use the straight
-// line. That dent pushes every vertex against the contact triangle's normal and is widened where its
+// line. The march runs on a thread of the renderer's own (started on the first such draw, one for the
+// renderer) while the calling thread draws what no dent reaches, and draw() waits for it before it draws
+// the rest. That dent pushes every vertex against the contact triangle's normal and is widened where its
 // slope would pass surface_dent_max_slope, and a wall it would drive the surface through gives way
 // ahead of it (SurfacePatch::PushedDent), so that deep presses fold the surface through itself far less
 // (palpate/core/deform.hpp, docs/design.md). Dent::along_surface in what the caller passes is ignored: the
