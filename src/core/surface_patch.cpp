@@ -91,6 +91,8 @@ SurfacePatch::SurfacePatch(const Mesh& mesh, PositionGroups groups)
         std::min({vertex_clearance_mm[c[0]], vertex_clearance_mm[c[1]], vertex_clearance_mm[c[2]]}) -
         std::max({edge[0], edge[1], edge[2]}) / std::sqrt(3.0f);
   }
+  if (!longest_edge_mm_.empty())
+    mesh_longest_edge_mm_ = *std::max_element(longest_edge_mm_.begin(), longest_edge_mm_.end());
   // And looking only behind: a triangle pushed against its own normal's side sweeps only the half-space
   // behind its plane, where the nearest other triangle is often further (a crown's facing gyrus lies
   // beside it, not behind).

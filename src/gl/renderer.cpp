@@ -484,8 +484,9 @@ struct FrameUniforms {
   }
 };
 
-// Splits the object's clusters into those some dent reaches and those none does.
-void classify_clusters(RenderObject& object) {
+// Splits the object's clusters into those some dent reaches and those none does. A first dent along the
+// surface reaches as far as the walls it pushes may give way (SurfacePatch::reach_mm).
+void classify_clusters(RenderObject& object, bool along_surface) {
   object.reached.clear();
   object.unreached.clear();
   for (std::size_t c = 0; c < object.clusters.size(); ++c) {
@@ -494,7 +495,9 @@ void classify_clusters(RenderObject& object) {
     for (int i = 0; i < object.dent_count && !reached; ++i) {
       const Dent& dent = object.dents[static_cast<std::size_t>(i)];
       // A little slack on the sphere so that rounding can only ever send a cluster to the deforming side.
-      const float reach = dent_cutoff_sigmas * dent.sigma_mm + cluster.radius * 1.001f + 1e-3f;
+      const float dent_reach = along_surface && i == 0 ? object.surface->patch.reach_mm(dent.sigma_mm)
+                                                       : dent_cutoff_sigmas * dent.sigma_mm;
+      const float reach = dent_reach + cluster.radius * 1.001f + 1e-3f;
       const glm::vec3 offset = object.cluster_centers[c] - dent.center_mm;
       reached = glm::dot(offset, offset) < reach * reach;
     }
@@ -700,7 +703,7 @@ void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection,
         march();
       }
       if (options.skip_unreached) {
-        classify_clusters(object);
+        classify_clusters(object, along_surface);
         plain.set_object(object.transform, object.material.color);
         glUseProgram(plain.program.id());
         object.unreached.draw();

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 #include <glm/trigonometric.hpp>
@@ -327,6 +328,66 @@ TEST(RendererDents, AContactDentsOnlyTheObjectItTouchesWithThatObjectsSigma) {
   // The same dent given to the left object explicitly changes the left half.
   const ObjectDent left_dent[] = {{0, {{-40.0f, -30.0f, 0.0f}, 4.0f, 8.0f}}};
   EXPECT_NE(undeformed, frame([&] { renderer.draw(camera.view, camera.projection, left_dent, options); }));
+}
+
+// A wall's corner may give way further from the contact than the dent's 4 sigma in a straight line (up to
+// SurfacePatch::wall_reach_edges of the mesh's longest edges further): the triangles around it must be
+// drawn by the deforming shader too, not left at rest among the plain ones. A sheet 0.5 mm under another,
+// both of 1 mm cells, and in the lower one a sliver from under the press to a corner 21 mm away: pressed
+// 3 mm from above, the sliver gives way along its length, and its far corner pokes out of the lower sheet.
+// Seen edge-on from beside that corner.
+TEST(RendererFalloff, AWallCornerThatGivesWayBeyondFourSigmaIsDrawnWhereItMoved) {
+  test::gl_context();
+  Mesh sheets = make_grid(60.0f, 60), wall = make_grid(60.0f, 60);
+  for (glm::vec3& p : sheets.positions_mm) p.z = 0.25f;
+  for (glm::vec3& p : wall.positions_mm) p.z = -0.25f;
+  for (glm::vec3& n : wall.normals) n = -n;
+  const auto vertex_at = [&](float x, float y) {  // the grid's vertices lie on whole millimetres
+    return std::uint32_t(std::lround((y + 30.0f) * 61.0f + (x + 30.0f)));
+  };
+  const glm::vec3 far_corner(3.0f, -17.0f, -0.25f);
+  ASSERT_LT(glm::distance(wall.positions_mm[vertex_at(far_corner.x, far_corner.y)], far_corner), 1e-4f);
+  wall.indices.insert(wall.indices.end(),
+                      {vertex_at(3.0f, 3.0f), vertex_at(4.0f, 3.0f), vertex_at(far_corner.x, far_corner.y)});
+  for (std::size_t i = 0; i < wall.indices.size(); i += 3)
+    std::swap(wall.indices[i + 1], wall.indices[i + 2]);
+  const std::uint32_t first = std::uint32_t(sheets.vertex_count());
+  sheets.positions_mm.insert(sheets.positions_mm.end(), wall.positions_mm.begin(), wall.positions_mm.end());
+  sheets.normals.insert(sheets.normals.end(), wall.normals.begin(), wall.normals.end());
+  for (const std::uint32_t i : wall.indices) sheets.indices.push_back(first + i);
+  const Dent dent{{3.75f, 3.75f, 0.25f}, 3.0f, 3.0f};
+  ASSERT_EQ(dent_with_slope_limit(dent, surface_dent_max_slope).sigma_mm, dent.sigma_mm);  // not widened
+
+  SurfacePatch patch(sheets);
+  patch.compute(-1, dent.center_mm, SurfacePatch::PushedDent{dent.depth_mm, dent.sigma_mm});
+  const glm::vec4 far_sample = patch.samples()[first + vertex_at(far_corner.x, far_corner.y)];
+  const float far_push = dent_gaussian(far_sample.w, dent.depth_mm, dent.sigma_mm);
+  ASSERT_GT(glm::distance(far_corner, dent.center_mm), dent_cutoff_sigmas * dent.sigma_mm + 8.0f);
+  ASSERT_GT(far_push, 1.0f) << "the far corner should give way";
+
+  const Camera beside{glm::lookAt(far_corner + glm::vec3(30.0f, 0.0f, -1.25f),
+                                  far_corner - glm::vec3(0, 0, 1.25f), {0, 0, 1}),
+                      glm::perspective(glm::radians(40.0f), 1.0f, 1.0f, 1000.0f)};
+  const ObjectDent dents[] = {{0, dent}};
+  DrawParams skipping, every_triangle;
+  skipping.draw_probe = every_triangle.draw_probe = false;
+  every_triangle.skip_unreached = false;
+  const Scene geodesic = scene_of(sheets, dent.sigma_mm, glm::mat4(1.0f), Falloff::geodesic);
+  const auto drawn = render<std::uint8_t>(geodesic, beside, dents, skipping);
+  const auto reference = render<std::uint8_t>(geodesic, beside, dents, every_triangle);
+  const auto straight = render<std::uint8_t>(scene_of(sheets, dent.sigma_mm), beside, dents, skipping);
+  std::size_t differ = 0, poking_out = 0;
+  for (std::size_t i = 0; i < drawn.size(); i += 4) {
+    differ += !std::equal(&drawn[i], &drawn[i] + 4, &reference[i]);
+    poking_out += !std::equal(&straight[i], &straight[i] + 4, &reference[i]);
+  }
+  EXPECT_GT(poking_out, 500u) << "the corner that gave way should show";
+  EXPECT_EQ(differ, 0u);
+  std::printf(
+      "a wall corner %.1f mm from the contact (4 sigma: %.0f mm) gave way by %.2f mm: %zu pixels; %zu unlike "
+      "every triangle deformed\n",
+      glm::distance(far_corner, dent.center_mm), dent_cutoff_sigmas * dent.sigma_mm, far_push, poking_out,
+      differ);
 }
 
 // The paper's named limit, in pixels: a press on the lower bank of a fold (a sulcus unrolled, 6 mm

@@ -92,6 +92,11 @@ class SurfacePatch {
   Range changed() const noexcept { return changed_; }
   // The contact triangle's outward unit normal, object frame (Dent::normal once taken to world).
   glm::vec3 contact_normal() const noexcept { return contact_normal_; }
+  // How far from the contact, in a straight line, a dent of spread `sigma_mm` may move a vertex: its 4
+  // sigma, and a wall's corner up to wall_reach_edges of the mesh's longest edges beyond (wall_push_cap).
+  float reach_mm(float sigma_mm) const noexcept {
+    return dent_cutoff_sigmas * sigma_mm + wall_reach_edges * mesh_longest_edge_mm_;
+  }
   // Vertices (welded) in the current patch, and those of them that gave way as walls.
   std::size_t size() const noexcept { return patch_.size(); }
   std::size_t walls_given_way() const noexcept { return walls_; }
@@ -140,6 +145,7 @@ class SurfacePatch {
       clearance_mm_;  // per welded triangle: how near the nearest triangle beyond its corners' two rings
   std::vector<float> back_clearance_mm_;  // per welded triangle: the same, behind its plane
   std::vector<float> longest_edge_mm_;    // per welded vertex
+  float mesh_longest_edge_mm_ = 0.0f;     // the largest of them
   std::vector<float> distance_mm_;        // per welded vertex: the sample's distance; +inf outside the patch
   std::vector<float> push_mm_;            // per welded vertex, scratch: what the dent moves it by
   std::vector<std::uint32_t> pending_;    // per welded vertex, scratch: a ring of vertices to cast from
