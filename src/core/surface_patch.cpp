@@ -91,8 +91,6 @@ SurfacePatch::SurfacePatch(const Mesh& mesh, PositionGroups groups)
         std::min({vertex_clearance_mm[c[0]], vertex_clearance_mm[c[1]], vertex_clearance_mm[c[2]]}) -
         std::max({edge[0], edge[1], edge[2]}) / std::sqrt(3.0f);
   }
-  if (!longest_edge_mm_.empty())
-    mesh_longest_edge_mm_ = *std::max_element(longest_edge_mm_.begin(), longest_edge_mm_.end());
   // And looking only behind: a triangle pushed against its own normal's side sweeps only the half-space
   // behind its plane, where the nearest other triangle is often further (a crown's facing gyrus lies
   // beside it, not behind).
@@ -212,6 +210,7 @@ void SurfacePatch::clear() noexcept {
   }
   patch_.clear();
   walls_ = 0;
+  moved_reach_mm_ = 0.0f;
 }
 
 // A look from the vertex shorter than this meets no triangle but those of its two rings (its own sheet,
@@ -404,6 +403,13 @@ SurfacePatch::WallPush SurfacePatch::least_wall_push(const Corners& front,
 float SurfacePatch::wall_push_cap(float distance_mm, float longest_edge_mm, PushedDent dent) noexcept {
   return dent_gaussian(std::max(distance_mm - wall_reach_edges * longest_edge_mm, 0.0f), dent.depth_mm,
                        dent.sigma_mm);
+}
+
+float SurfacePatch::wall_reach_mm(std::uint32_t triangle) const noexcept {
+  if (triangle >= welded_triangle_.size()) return 0.0f;
+  const std::uint32_t* corners = &welded_.indices[3 * std::size_t(welded_triangle_[triangle])];
+  return wall_reach_edges *
+         std::max({longest_edge_mm_[corners[0]], longest_edge_mm_[corners[1]], longest_edge_mm_[corners[2]]});
 }
 
 // Every triangle that a triangle of `cluster` could reach along the push this press: its pushes are at most
@@ -675,6 +681,7 @@ void SurfacePatch::write_samples(glm::vec3 point_mm, float radius_mm) noexcept {
     const glm::vec3 position = welded_.positions_mm[v];
     const float length = glm::length(gradient_sum_[v]);
     const glm::vec3 straight = point_mm - position;
+    moved_reach_mm_ = std::max(moved_reach_mm_, glm::length(straight));
     const glm::vec3 toward = length > 0.0f                  ? -gradient_sum_[v] / length
                              : glm::length(straight) > 0.0f ? glm::normalize(straight)
                                                             : glm::vec3(0.0f);

@@ -11,6 +11,7 @@
 #include <glm/matrix.hpp>
 #include <glm/trigonometric.hpp>
 #include <numeric>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -236,8 +237,17 @@ struct DentBuffer {
 struct SurfaceFalloff {
   SurfacePatch patch;
   GLuint buffer = 0;
+  // Per cluster of the mesh's triangles: how much further than the dent's 4 sigma it may move a corner there.
+  std::vector<float> cluster_wall_reach_mm;
 
-  SurfaceFalloff(const Mesh& mesh, GLuint vertex_array) : patch(mesh) {
+  SurfaceFalloff(const Mesh& mesh, GLuint vertex_array, std::span<const TriangleCluster> clusters)
+      : patch(mesh) {
+    for (const TriangleCluster& cluster : clusters) {
+      float reach = 0.0f;
+      for (std::uint32_t i = cluster.first_index; i < cluster.first_index + cluster.index_count; i += 3)
+        reach = std::max(reach, patch.wall_reach_mm(i / 3));
+      cluster_wall_reach_mm.push_back(reach);
+    }
     glCreateBuffers(1, &buffer);
     glNamedBufferStorage(buffer, static_cast<GLsizeiptr>(patch.samples().size_bytes()),
                          patch.samples().data(), GL_DYNAMIC_STORAGE_BIT);
@@ -328,6 +338,7 @@ struct RenderObject {
   std::vector<std::uint32_t> triangle_moved_to;  // the scene mesh's triangle t is triangle_moved_to[t] here
   std::unique_ptr<SurfaceFalloff> surface;       // made when the material first asks for the geodesic falloff
   DrawRanges reached, unreached;                 // per-frame scratch
+  std::vector<std::uint32_t> undecided;          // per-frame scratch: clusters only a wall may reach
 };
 
 }  // namespace
@@ -397,7 +408,8 @@ void Renderer::upload(const Scene& scene) {
     }
     object->gpu = std::make_unique<GpuMesh>(object->mesh);
     if (source.material.falloff == Falloff::geodesic) {
-      object->surface = std::make_unique<SurfaceFalloff>(object->mesh, object->gpu->vertex_array);
+      object->surface =
+          std::make_unique<SurfaceFalloff>(object->mesh, object->gpu->vertex_array, object->clusters);
     }
     object->world_bounds = world_bounds(source);
     objects.push_back(std::move(object));
@@ -444,7 +456,7 @@ void Renderer::set_material(std::size_t object, const Material& material) {
   }
   RenderObject& target = *state_->objects[object];
   if (material.falloff == Falloff::geodesic && !target.surface) {
-    target.surface = std::make_unique<SurfaceFalloff>(target.mesh, target.gpu->vertex_array);
+    target.surface = std::make_unique<SurfaceFalloff>(target.mesh, target.gpu->vertex_array, target.clusters);
   }
   target.material = material;
 }
@@ -485,22 +497,40 @@ struct FrameUniforms {
 };
 
 // Splits the object's clusters into those some dent reaches and those none does. A first dent along the
-// surface reaches as far as the walls it pushes may give way (SurfacePatch::reach_mm).
+// surface may also move a wall's corner beyond its 4 sigma (SurfacePatch::wall_reach_mm): the clusters
+// only that could reach are left undecided until the patch is known (settle_clusters).
 void classify_clusters(RenderObject& object, bool along_surface) {
   object.reached.clear();
   object.unreached.clear();
+  object.undecided.clear();
   for (std::size_t c = 0; c < object.clusters.size(); ++c) {
     const TriangleCluster& cluster = object.clusters[c];
-    bool reached = false;
+    bool reached = false, maybe = false;
     for (int i = 0; i < object.dent_count && !reached; ++i) {
       const Dent& dent = object.dents[static_cast<std::size_t>(i)];
       // A little slack on the sphere so that rounding can only ever send a cluster to the deforming side.
-      const float dent_reach = along_surface && i == 0 ? object.surface->patch.reach_mm(dent.sigma_mm)
-                                                       : dent_cutoff_sigmas * dent.sigma_mm;
-      const float reach = dent_reach + cluster.radius * 1.001f + 1e-3f;
-      const glm::vec3 offset = object.cluster_centers[c] - dent.center_mm;
-      reached = glm::dot(offset, offset) < reach * reach;
+      const float slack = cluster.radius * 1.001f + 1e-3f, reach = dent_cutoff_sigmas * dent.sigma_mm + slack;
+      const float distance = glm::distance(object.cluster_centers[c], dent.center_mm);
+      reached = distance < reach;
+      if (along_surface && i == 0) maybe = distance < reach + object.surface->cluster_wall_reach_mm[c];
     }
+    if (!reached && maybe) {
+      object.undecided.push_back(static_cast<std::uint32_t>(c));
+    } else {
+      (reached ? object.reached : object.unreached).add(cluster.first_index, cluster.index_count);
+    }
+  }
+}
+
+// Sends the undecided clusters to the deforming side where the patch moved a vertex that far from the first
+// dent's contact, else to the plain side (emptied first: what it held is drawn).
+void settle_clusters(RenderObject& object) {
+  object.unreached.clear();
+  const float moved = object.surface->patch.moved_reach_mm();
+  for (const std::uint32_t c : object.undecided) {
+    const TriangleCluster& cluster = object.clusters[c];
+    const float reach = moved + cluster.radius * 1.001f + 1e-3f;
+    const bool reached = glm::distance(object.cluster_centers[c], object.dents[0].center_mm) < reach;
     (reached ? object.reached : object.unreached).add(cluster.first_index, cluster.index_count);
   }
 }
@@ -711,6 +741,8 @@ void Renderer::State::render(const glm::mat4& view, const glm::mat4& projection,
       if (beside) {
         glFlush();
         side_thread->wait();
+        settle_clusters(object);
+        object.unreached.draw();  // with the plain program still
       }
       if (along_surface) object.surface->upload(object.dents[0], object.transform);
       object.dent_buffer.update(object_dents);

@@ -92,11 +92,13 @@ class SurfacePatch {
   Range changed() const noexcept { return changed_; }
   // The contact triangle's outward unit normal, object frame (Dent::normal once taken to world).
   glm::vec3 contact_normal() const noexcept { return contact_normal_; }
-  // How far from the contact, in a straight line, a dent of spread `sigma_mm` may move a vertex: its 4
-  // sigma, and a wall's corner up to wall_reach_edges of the mesh's longest edges beyond (wall_push_cap).
-  float reach_mm(float sigma_mm) const noexcept {
-    return dent_cutoff_sigmas * sigma_mm + wall_reach_edges * mesh_longest_edge_mm_;
-  }
+  // How much further than a dent's 4 sigma from the contact, in a straight line, it may move a corner of
+  // the mesh's triangle `triangle`: as a wall's corner, up to wall_reach_edges of the corner's longest
+  // edges (wall_push_cap). 0 for a triangle out of range.
+  float wall_reach_mm(std::uint32_t triangle) const noexcept;
+  // The furthest from the contact, in a straight line, of the vertices the last compute() gave a sample
+  // (0: none).
+  float moved_reach_mm() const noexcept { return moved_reach_mm_; }
   // Vertices (welded) in the current patch, and those of them that gave way as walls.
   std::size_t size() const noexcept { return patch_.size(); }
   std::size_t walls_given_way() const noexcept { return walls_; }
@@ -179,6 +181,7 @@ class SurfacePatch {
   std::vector<std::uint32_t> wall_met_;       // scratch: those it meets
   std::uint32_t press_number_ = 0;
   std::size_t walls_ = 0;
+  float moved_reach_mm_ = 0.0f;
   struct Press {
     std::int64_t triangle;
     glm::vec3 point_mm;
