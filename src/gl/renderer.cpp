@@ -496,6 +496,12 @@ struct FrameUniforms {
   }
 };
 
+// What a cluster's centre adds to a reach: its radius, and a little slack so that rounding can only ever
+// send a cluster to the deforming side.
+float cluster_slack(const TriangleCluster& cluster) noexcept {
+  return cluster.radius * 1.001f + 1e-3f;
+}
+
 // Splits the object's clusters into those some dent reaches and those none does. A first dent along the
 // surface may also move a wall's corner beyond its 4 sigma (SurfacePatch::wall_reach_mm): the clusters
 // only that could reach are left undecided until the patch is known (settle_clusters).
@@ -508,8 +514,7 @@ void classify_clusters(RenderObject& object, bool along_surface) {
     bool reached = false, maybe = false;
     for (int i = 0; i < object.dent_count && !reached; ++i) {
       const Dent& dent = object.dents[static_cast<std::size_t>(i)];
-      // A little slack on the sphere so that rounding can only ever send a cluster to the deforming side.
-      const float slack = cluster.radius * 1.001f + 1e-3f, reach = dent_cutoff_sigmas * dent.sigma_mm + slack;
+      const float reach = dent_cutoff_sigmas * dent.sigma_mm + cluster_slack(cluster);
       const float distance = glm::distance(object.cluster_centers[c], dent.center_mm);
       reached = distance < reach;
       if (along_surface && i == 0) maybe = distance < reach + object.surface->cluster_wall_reach_mm[c];
@@ -529,7 +534,7 @@ void settle_clusters(RenderObject& object) {
   const float moved = object.surface->patch.moved_reach_mm();
   for (const std::uint32_t c : object.undecided) {
     const TriangleCluster& cluster = object.clusters[c];
-    const float reach = moved + cluster.radius * 1.001f + 1e-3f;
+    const float reach = moved + cluster_slack(cluster);
     const bool reached = glm::distance(object.cluster_centers[c], object.dents[0].center_mm) < reach;
     (reached ? object.reached : object.unreached).add(cluster.first_index, cluster.index_count);
   }

@@ -147,7 +147,6 @@ class SurfacePatch {
       clearance_mm_;  // per welded triangle: how near the nearest triangle beyond its corners' two rings
   std::vector<float> back_clearance_mm_;  // per welded triangle: the same, behind its plane
   std::vector<float> longest_edge_mm_;    // per welded vertex
-  float mesh_longest_edge_mm_ = 0.0f;     // the largest of them
   std::vector<float> distance_mm_;        // per welded vertex: the sample's distance; +inf outside the patch
   std::vector<float> push_mm_;            // per welded vertex, scratch: what the dent moves it by
   std::vector<std::uint32_t> pending_;    // per welded vertex, scratch: a ring of vertices to cast from
