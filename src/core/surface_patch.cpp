@@ -66,6 +66,7 @@ SurfacePatch::SurfacePatch(const Mesh& mesh)
 
 SurfacePatch::SurfacePatch(const Mesh& mesh, PositionGroups groups)
     : welded_(weld_in_spatial_order(mesh, groups, welded_triangle_)), field_(welded_) {
+  field_.reserve(window_budget);
   Scene alone;
   alone.objects.push_back({"surface patch", welded_, glm::mat4(1.0f), Material{}, {}});
   walls_bvh_ = Bvh::build(alone);
@@ -304,11 +305,12 @@ void SurfacePatch::march(std::int64_t triangle, glm::vec3 point_mm, float radius
   const std::uint32_t contact = triangle >= 0 && std::size_t(triangle) < triangles
                                     ? welded_triangle_[std::size_t(triangle)]
                                     : closest_triangle(point_mm);
-  // The march's second look stops at 3 sigma of the dent's 4: the weight there is under 1.1% of p, so
-  // the few percent the march's edge arrivals leave change it by at most 0.0027 of p (over 200 presses
-  // of 8 mm at sigma 8 mm on Colin27), for about a tenth of the march's time.
-  constexpr float second_look_share = 0.75f;
-  field_.compute(contact, point_mm, radius_mm, second_look_share * radius_mm);  // the triangle is in range
+  // Exact out to 2 sigma of the dent's 4, where the weight is steep (its slope is largest at 1 sigma),
+  // or as far as window_budget windows reach. Fast marching beyond, its second look out to 3 sigma: the
+  // weight there is under 1.1% of p, so the few percent the march's edge arrivals leave change it by at most
+  // 0.0027 of p (over 200 presses of 8 mm at sigma 8 mm on Colin27), for about a tenth of the march's time.
+  const GeodesicField::Reach reach{0.5f * radius_mm, window_budget, 0.75f * radius_mm};
+  field_.compute(contact, point_mm, radius_mm, reach);  // the triangle is in range
   const std::uint32_t* corners = &welded_.indices[3 * std::size_t(contact)];
   const glm::vec3 face = glm::cross(welded_.positions_mm[corners[1]] - welded_.positions_mm[corners[0]],
                                     welded_.positions_mm[corners[2]] - welded_.positions_mm[corners[0]]);

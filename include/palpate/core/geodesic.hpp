@@ -3,15 +3,20 @@
 // over the surface, so that a press on one bank of a sulcus leaves the facing bank alone (the paper's
 // named limit of its Euclidean falloff).
 //
-// Fast marching on the triangles (Kimmel and Sethian, 1998): the front leaves the contact triangle's
-// three corners with their in-plane distances and crosses each triangle from the virtual point source
-// that its two known corners place in its plane; at an obtuse corner the neighbouring triangle is
-// unfolded into the plane, so the front is not forced along edges there. A triangle whose corners the
-// front reached from either side of a saddle vertex or a fold (its source proves false) is crossed
-// through its neighbour instead. Once all are known, a vertex the front still reached along an edge is
-// updated again, and one whose source could not be checked then is computed afresh. Written here: no Debian
-// library marches on a triangle mesh with a workspace reused per frame (CGAL's exact shortest paths serve as
-// the test's reference: exact, but far too slow per frame).
+// Near the contact, exact: the shortest paths over the polyhedral surface by window propagation (Chen
+// and Han, 1990, with Xin and Wang's 2009 filtering). A window is an interval of an edge lit from one
+// (pseudo-)source unfolded into the edge's plane; windows cross triangles about nearest first, split at
+// the vertices they light, and bend only at saddle and boundary vertices, which become pseudo-sources
+// lighting only the triangles a shortest path can turn into. The parts of a window that a vertex's known
+// path reaches sooner are trimmed away. Their number grows faster than the area, so in a dent's tail,
+// where the weight changes slowly, fast marching takes over from the exact values (Kimmel and Sethian,
+// 1998): the front crosses each triangle from the virtual point source that its two known corners place
+// in its plane; at an obtuse corner the neighbouring triangle is unfolded into the plane. A triangle whose
+// corners the front reached from either side of a saddle vertex or a fold (its source proves false) is
+// crossed through its neighbour instead, and once all are known, a vertex the front still reached along
+// an edge is updated again. Written here: no Debian library computes paths on a triangle mesh out to a
+// radius with a workspace reused per frame (CGAL's exact shortest paths serve as the tests' reference:
+// exact, but they sequence the whole mesh, seconds per source).
 #include <cstdint>
 #include <glm/vec2.hpp>
 #include <glm/vec3.hpp>
@@ -28,18 +33,33 @@ class GeodesicField {
   // Builds the mesh's adjacency and sizes the workspace once. The mesh must outlive the field.
   explicit GeodesicField(const Mesh& mesh);
 
-  // Marches from `point_mm` (on triangle `triangle`, the t-th of Mesh::indices / 3) until the front
-  // passes `radius_mm`. The second look after the march (which puts right the vertices the front reached
-  // along an edge, and those after them) stops at `second_look_mm` but for the neighbours of a vertex it
-  // changed by over 1%: beyond it a distance may stay a few percent long, as in a dent's tail where that
-  // no longer matters. No allocation. Throws palpate::Error for a triangle out of range.
-  void compute(std::uint32_t triangle, glm::vec3 point_mm, float radius_mm,
-               float second_look_mm = std::numeric_limits<float>::infinity());
+  // How far each part reaches: exact within `exact_mm`, or as far as the first `window_budget` windows
+  // reach (a bound on the cost, as their number grows faster than the area); beyond, fast marching, a few
+  // percent long at most. The second look after the march (which puts right the vertices the front
+  // reached along an edge, and those after them) stops at `second_look_mm` but for the neighbours of a
+  // vertex it changed by over 1%: beyond it a distance may stay a few percent long, as in a dent's tail
+  // where that no longer matters. By default exact throughout.
+  struct Reach {
+    float exact_mm = std::numeric_limits<float>::infinity();
+    std::size_t window_budget = std::numeric_limits<std::size_t>::max();
+    float second_look_mm = std::numeric_limits<float>::infinity();
+  };
+  // The distances from `point_mm` (on triangle `triangle`, the t-th of Mesh::indices / 3) out to
+  // `radius_mm`. Allocates only while it lights more windows than any compute before it or reserve()
+  // made room for. Throws palpate::Error for a triangle out of range.
+  void compute(std::uint32_t triangle, glm::vec3 point_mm, float radius_mm, Reach reach);
+  // Exact throughout.
+  void compute(std::uint32_t triangle, glm::vec3 point_mm, float radius_mm);
+  // Room for the windows of a compute() with this budget (a window's children and a pseudo-source's
+  // windows past it too), so that it allocates nothing.
+  void reserve(std::size_t window_budget) { windows_.reserve(window_budget + budget_overrun); }
+  static constexpr std::size_t budget_overrun = 64;
 
-  // The vertices within the radius, from the last compute(), in the order the front reached them
-  // (nearest first but for the vertices corrected afterwards, moved by a few percent, rarely past the
-  // radius).
+  // The vertices within the radius, from the last compute(), nearest first (but for those the second
+  // look moved by a few percent beyond `exact_mm`, rarely past the radius).
   std::span<const std::uint32_t> reached() const noexcept { return reached_; }
+  // How many windows the last compute() lit (up to budget_overrun more than its budget).
+  std::size_t windows() const noexcept { return windows_.size(); }
   // A vertex's distance along the surface from the last compute(); +infinity beyond the radius.
   float distance_mm(std::uint32_t vertex) const noexcept;
   // The triangles around a vertex (indices of Mesh::indices / 3).
@@ -49,6 +69,27 @@ class GeodesicField {
   }
 
  private:
+  // An interval [b0, b1] of edge `edge` (corners edge, edge + 1) of `triangle`, lit from the source at
+  // (sx, -sy) in the edge's frame (its first corner at the origin, its second at (length, 0), the
+  // triangle's third corner above), sigma along the surface from the contact: the window lights
+  // `triangle`.
+  // A pseudo-source waiting to light its triangles is one too: `source` the vertex, sigma its distance,
+  // `edge` pseudo_source_event.
+  struct Window {
+    double b0, b1, sx, sy, sigma;
+    std::uint32_t triangle;
+    std::uint32_t source;  // the pseudo-source vertex; no_vertex for the contact point
+    std::uint32_t next;    // the next in its bucket
+    std::uint8_t edge;
+  };
+  void enqueue(const Window& window, double key);
+  void light(std::uint32_t triangle, glm::vec3 point_mm);
+  void emit(std::uint32_t vertex, double sigma);
+  void leave(std::uint32_t triangle, int edge, double b0, double b1, glm::dvec2 source, double sigma,
+             std::uint32_t from);
+  bool trim(Window& window) const noexcept;
+  void propagate(const Window& window);
+  void lower(std::uint32_t vertex, float distance, float arrival);
   // The triangle beyond edge (p, q) of `triangle` (-1: none, or not an edge of it) and its third corner.
   struct Across {
     std::int32_t triangle;
@@ -80,6 +121,21 @@ class GeodesicField {
   };
   std::vector<Layout> layout_;        // layout_[3t + k]
   std::vector<std::int32_t> across_;  // across_[3t + e]: the triangle beyond edge e (corners e, e+1) of t
+  std::vector<std::uint8_t> across_edge_;        // which edge of that triangle it is
+  std::vector<std::uint8_t> pseudo_source_;      // a saddle (corners' angles over 2 pi) or on a boundary
+  std::vector<float> corner_angle_, fan_start_;  // [3t + k]: the corner's angle; where it starts round it
+  std::vector<float>
+      fan_angle_;  // each vertex's corners' angles; NaN where its triangles do not close round it
+  std::vector<float> arrival_;  // where the path to a vertex arrives, as an angle round it (NaN: unknown)
+  std::vector<std::uint8_t> exact_;  // within exact_mm: the march leaves it as the windows found it
+  std::vector<Window> windows_;
+  // The windows waiting, in buckets of their nearest distance to the contact: taken nearest bucket
+  // first, each bucket last in, first out. Any order gives the exact paths (every filter compares with the
+  // length of a real path); near the order of distance, the filters find the vertices' distances known.
+  std::vector<std::uint32_t> buckets_;
+  std::size_t bucket_ = 0;
+  float exact_mm_ = 0.0f;
+  std::size_t window_budget_ = 0;
   std::vector<float> distance_;
   std::vector<std::uint8_t> alive_;
   std::vector<std::uint8_t> along_edge_;  // the vertex's distance came along an edge, not through a triangle
