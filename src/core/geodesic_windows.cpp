@@ -214,12 +214,13 @@ void GeodesicField::propagate(const Window& lit) {
   const glm::dvec2 a(0.0), b(length, 0.0), corner(cx, cy), source(w.sx, -w.sy);
   // Where the ray from the source through the third corner crosses the edge.
   const double through_corner = w.sx + (cx - w.sx) * w.sy / (w.sy + cy);
-  if (through_corner >= w.b0 && through_corner <= w.b1) {
+  const std::uint32_t third = c[(w.edge + 2) % 3];
+  const double to_source = glm::distance(source, corner);
+  if (through_corner >= w.b0 && through_corner <= w.b1 && float(w.sigma + to_source) < distance_[third]) {
     // It arrives from the source, at this angle from the corner's edge to a.
-    const double to_source = glm::distance(source, corner);
     const double turn = std::acos(
         std::clamp(glm::dot(a - corner, source - corner) / (glm::length(corner) * to_source), -1.0, 1.0));
-    lower(c[(w.edge + 2) % 3], float(w.sigma + to_source),
+    lower(third, float(w.sigma + to_source),
           fan_start_[3 * std::size_t(w.triangle) + (w.edge + 2) % 3] + float(turn));
   }
   // On the edge from a to the corner, the ray through x on the edge meets it at this fraction from a.
@@ -228,7 +229,7 @@ void GeodesicField::propagate(const Window& lit) {
       return std::clamp(x * w.sy / (cx * w.sy - (x - w.sx) * cy), 0.0, 1.0);
     };
     const double t0 = fraction(w.b0), t1 = through_corner < w.b1 ? 1.0 : fraction(w.b1);
-    const double edge_length = glm::length(corner);  // the edge from the corner to a
+    const double edge_length = layout_[3 * std::size_t(w.triangle) + (w.edge + 1) % 3].edge_mm;  // to a
     leave(w.triangle, (w.edge + 2) % 3, (1.0 - t1) * edge_length, (1.0 - t0) * edge_length,
           in_edge_frame(corner, a, edge_length, b, source), w.sigma, w.source);
   }
@@ -240,7 +241,7 @@ void GeodesicField::propagate(const Window& lit) {
           1.0);
     };
     const double t0 = through_corner > w.b0 ? 0.0 : fraction(w.b0), t1 = fraction(w.b1);
-    const double edge_length = glm::distance(corner, b);  // the edge from b to the corner
+    const double edge_length = layout_[3 * std::size_t(w.triangle) + w.edge].edge_mm;  // b to the corner
     leave(w.triangle, (w.edge + 1) % 3, (1.0 - t1) * edge_length, (1.0 - t0) * edge_length,
           in_edge_frame(b, corner, edge_length, a, source), w.sigma, w.source);
   }
