@@ -7,6 +7,7 @@
 #include <map>
 #include <numbers>
 #include <tuple>
+#include <utility>
 
 #include "palpate/core/shapes.hpp"
 
@@ -98,6 +99,20 @@ Mesh make_torus(float major_mm, float minor_mm, int segments, int sides) {
   }
   compute_vertex_normals(mesh);
   return mesh;
+}
+
+void add_sheet(Mesh& mesh, float z, std::size_t cells, bool facing_up) {
+  Mesh sheet = make_grid(60.0f, cells);
+  for (glm::vec3& p : sheet.positions_mm) p.z = z;
+  if (!facing_up) {
+    for (glm::vec3& n : sheet.normals) n = -n;
+    for (std::size_t i = 0; i < sheet.indices.size(); i += 3)
+      std::swap(sheet.indices[i + 1], sheet.indices[i + 2]);
+  }
+  const std::uint32_t first = std::uint32_t(mesh.vertex_count());
+  mesh.positions_mm.insert(mesh.positions_mm.end(), sheet.positions_mm.begin(), sheet.positions_mm.end());
+  mesh.normals.insert(mesh.normals.end(), sheet.normals.begin(), sheet.normals.end());
+  for (const std::uint32_t i : sheet.indices) mesh.indices.push_back(first + i);
 }
 
 Mesh split_flat(const Mesh& mesh) {

@@ -154,28 +154,13 @@ TEST(SurfacePatch, AcrossAFoldOnlyTheStraightLineDentsTheFacingSheet) {
   EXPECT_LT(tilted.x, -0.1f);  // toward -x, where the contact is
 }
 
-// A 60 x 60 mm sheet of `cells` x `cells` squares at height z, facing +z or -z, added to `mesh`.
-void add_sheet(Mesh& mesh, float z, std::size_t cells, bool facing_up) {
-  Mesh sheet = make_grid(60.0f, cells);
-  for (glm::vec3& p : sheet.positions_mm) p.z = z;
-  if (!facing_up) {
-    for (glm::vec3& n : sheet.normals) n = -n;
-    for (std::size_t i = 0; i < sheet.indices.size(); i += 3)
-      std::swap(sheet.indices[i + 1], sheet.indices[i + 2]);
-  }
-  const std::uint32_t first = std::uint32_t(mesh.vertex_count());
-  mesh.positions_mm.insert(mesh.positions_mm.end(), sheet.positions_mm.begin(), sheet.positions_mm.end());
-  mesh.normals.insert(mesh.normals.end(), sheet.normals.begin(), sheet.normals.end());
-  for (const std::uint32_t i : sheet.indices) mesh.indices.push_back(first + i);
-}
-
 // A slab 3 mm thick and open at its sides: two 60 x 60 mm sheets (1 mm cells), the top at z = 1.5
 // facing +z, the bottom at z = -1.5 facing -z. Along the surface the bottom cannot be reached from the top.
 // With `bottom_cells` other than 60 the bottom's vertices do not lie below the top's.
 Mesh make_thin_slab(std::size_t bottom_cells = 60) {
   Mesh slab;
-  add_sheet(slab, 1.5f, 60, true);
-  add_sheet(slab, -1.5f, bottom_cells, false);
+  testing::add_sheet(slab, 1.5f, 60, true);
+  testing::add_sheet(slab, -1.5f, bottom_cells, false);
   return slab;
 }
 
@@ -282,11 +267,11 @@ TEST(SurfacePatch, WhereTheSheetsDoNotLineUpPartOfTheGapStaysEverywhere) {
 // bottom a fifth of its 1 mm away (without it the middle sheet passed 0.76 mm through the bottom).
 TEST(SurfacePatch, AWallGivingWayPushesTheWallAheadOfItInTurn) {
   Mesh stack;
-  add_sheet(stack, 0.0f, 60, true);
+  testing::add_sheet(stack, 0.0f, 60, true);
   const std::size_t middle_first = stack.indices.size();
-  add_sheet(stack, -5.0f, 20, false);
+  testing::add_sheet(stack, -5.0f, 20, false);
   const std::size_t bottom_first = stack.indices.size();
-  add_sheet(stack, -6.0f, 60, true);
+  testing::add_sheet(stack, -6.0f, 60, true);
   const glm::vec3 contact(0.3f, -0.2f, 0.0f);
   const Dent dent = dent_with_slope_limit(Dent{contact, 6.0f, 3.0f}, surface_dent_max_slope);
   SurfacePatch patch(stack);
@@ -317,9 +302,9 @@ TEST(SurfacePatch, AWallGivingWayPushesTheWallAheadOfItInTurn) {
 // (SurfacePatch::wall_reach_edges); held at their own Gaussian, the sheets crossed by 1.85 mm.
 TEST(SurfacePatch, ACoarseWallMovesAsFarAsTheDentNeedsBetweenItsCorners) {
   Mesh slab;
-  add_sheet(slab, 0.25f, 60, true);
+  testing::add_sheet(slab, 0.25f, 60, true);
   const std::size_t wall_first = slab.indices.size();
-  add_sheet(slab, -0.25f, 8, false);
+  testing::add_sheet(slab, -0.25f, 8, false);
   const glm::vec3 contact(3.75f, 3.75f, 0.25f);  // over the middle of a wall's square
   const Dent dent = dent_with_slope_limit(Dent{contact, 3.0f, 3.0f}, surface_dent_max_slope);
   SurfacePatch patch(slab);

@@ -338,29 +338,24 @@ TEST(RendererDents, AContactDentsOnlyTheObjectItTouchesWithThatObjectsSigma) {
 // Seen edge-on from beside that corner.
 TEST(RendererFalloff, AWallCornerThatGivesWayBeyondFourSigmaIsDrawnWhereItMoved) {
   test::gl_context();
-  Mesh sheets = make_grid(60.0f, 60), wall = make_grid(60.0f, 60);
-  for (glm::vec3& p : sheets.positions_mm) p.z = 0.25f;
-  for (glm::vec3& p : wall.positions_mm) p.z = -0.25f;
-  for (glm::vec3& n : wall.normals) n = -n;
-  const auto vertex_at = [&](float x, float y) {  // the grid's vertices lie on whole millimetres
-    return std::uint32_t(std::lround((y + 30.0f) * 61.0f + (x + 30.0f)));
+  Mesh sheets;
+  testing::add_sheet(sheets, 0.25f, 60, true);
+  const std::uint32_t first = std::uint32_t(sheets.vertex_count());  // the lower sheet's first vertex
+  testing::add_sheet(sheets, -0.25f, 60, false);
+  const auto vertex_at = [&](float x, float y) {  // the lower sheet's vertices lie on whole millimetres
+    return first + std::uint32_t(std::lround((y + 30.0f) * 61.0f + (x + 30.0f)));
   };
   const glm::vec3 far_corner(3.0f, -17.0f, -0.25f);
-  ASSERT_LT(glm::distance(wall.positions_mm[vertex_at(far_corner.x, far_corner.y)], far_corner), 1e-4f);
-  wall.indices.insert(wall.indices.end(),
-                      {vertex_at(3.0f, 3.0f), vertex_at(4.0f, 3.0f), vertex_at(far_corner.x, far_corner.y)});
-  for (std::size_t i = 0; i < wall.indices.size(); i += 3)
-    std::swap(wall.indices[i + 1], wall.indices[i + 2]);
-  const std::uint32_t first = std::uint32_t(sheets.vertex_count());
-  sheets.positions_mm.insert(sheets.positions_mm.end(), wall.positions_mm.begin(), wall.positions_mm.end());
-  sheets.normals.insert(sheets.normals.end(), wall.normals.begin(), wall.normals.end());
-  for (const std::uint32_t i : wall.indices) sheets.indices.push_back(first + i);
+  ASSERT_LT(glm::distance(sheets.positions_mm[vertex_at(far_corner.x, far_corner.y)], far_corner), 1e-4f);
+  sheets.indices.insert(
+      sheets.indices.end(),  // facing -z, as the lower sheet does
+      {vertex_at(3.0f, 3.0f), vertex_at(far_corner.x, far_corner.y), vertex_at(4.0f, 3.0f)});
   const Dent dent{{3.75f, 3.75f, 0.25f}, 3.0f, 3.0f};
   ASSERT_EQ(dent_with_slope_limit(dent, surface_dent_max_slope).sigma_mm, dent.sigma_mm);  // not widened
 
   SurfacePatch patch(sheets);
   patch.compute(-1, dent.center_mm, SurfacePatch::PushedDent{dent.depth_mm, dent.sigma_mm});
-  const glm::vec4 far_sample = patch.samples()[first + vertex_at(far_corner.x, far_corner.y)];
+  const glm::vec4 far_sample = patch.samples()[vertex_at(far_corner.x, far_corner.y)];
   const float far_push = dent_gaussian(far_sample.w, dent.depth_mm, dent.sigma_mm);
   ASSERT_GT(glm::distance(far_corner, dent.center_mm), dent_cutoff_sigmas * dent.sigma_mm + 8.0f);
   ASSERT_GT(far_push, 1.0f) << "the far corner should give way";

@@ -31,6 +31,9 @@ Mesh make_torus(float major_mm, float minor_mm, int segments, int sides);
 // more apart along the surface. Open, smooth (shared vertices); the lower part faces +z, the upper -z.
 Mesh make_folded_sheet();
 
+// A 60 x 60 mm sheet of `cells` x `cells` squares at height z, facing +z or -z, added to `mesh`.
+void add_sheet(Mesh& mesh, float z, std::size_t cells, bool facing_up);
+
 // The mesh flat-shaded as exporters write it: three vertices of its own for every triangle, each with
 // the face's normal (so no two triangles share a vertex, though their corners coincide).
 Mesh split_flat(const Mesh& mesh);
