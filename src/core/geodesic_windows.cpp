@@ -64,6 +64,15 @@ void GeodesicField::light(std::uint32_t triangle, glm::vec3 point_mm) {
     }
   };
   int on_edge = -1;
+  if (corners[0] == corners[1] || corners[1] == corners[2] || corners[2] == corners[0]) {
+    // A triangle with a corner twice is no part of the surface (GeodesicField's constructor): the paths
+    // leave the contact through its corners.
+    for (int k = 0; k < 3; ++k) {
+      arrival_[corners[k]] = std::numeric_limits<float>::quiet_NaN();  // every way round it
+      emit(corners[k], distance_[corners[k]]);
+    }
+    on_edge = 3;
+  }
   for (int e = 0; e < 3 && on_edge < 3; ++e) {
     const float length = layout_[3 * std::size_t(triangle) + (e + 2) % 3].edge_mm;
     const glm::dvec3 p = mesh_.positions_mm[corners[e]], q = mesh_.positions_mm[corners[(e + 1) % 3]];
@@ -148,13 +157,14 @@ void GeodesicField::emit(std::uint32_t vertex, double sigma) {
       if (from < 0.0f) from += fan;
       if (from > fan - 2.0f * pi + slack && from + corner_angle_[at_corner] < fan - slack) continue;
     }
-    const Layout& layout = layout_[at_corner];
-    const glm::dvec2 at = layout.corner;
+    // Along its two edges (their lengths from the corners across from them: the vertex's own layout is
+    // nothing where the edge across from it has no length).
     const std::size_t at_a = 3 * std::size_t(t) + (k + 1) % 3, at_b = 3 * std::size_t(t) + (k + 2) % 3;
-    lower(c[(k + 1) % 3], float(sigma + glm::length(at)), fan_start_[at_a] + corner_angle_[at_a]);
-    lower(c[(k + 2) % 3], float(sigma + glm::distance(at, glm::dvec2(layout.edge_mm, 0.0))),
-          fan_start_[at_b]);
-    if (layout.edge_mm > 0.0f) leave(t, (k + 1) % 3, 0.0, layout.edge_mm, at, sigma, vertex);
+    lower(c[(k + 1) % 3], float(sigma + double(layout_[at_b].edge_mm)),
+          fan_start_[at_a] + corner_angle_[at_a]);
+    lower(c[(k + 2) % 3], float(sigma + double(layout_[at_a].edge_mm)), fan_start_[at_b]);
+    const Layout& layout = layout_[at_corner];
+    if (layout.edge_mm > 0.0f) leave(t, (k + 1) % 3, 0.0, layout.edge_mm, layout.corner, sigma, vertex);
   }
 }
 
