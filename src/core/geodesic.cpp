@@ -49,30 +49,20 @@ float planar_update(glm::vec2 a, float da, glm::vec2 b, float db, glm::vec2 c) {
 
 GeodesicField::GeodesicField(const Mesh& mesh) : mesh_(mesh) {
   const std::size_t vertices = mesh.vertex_count(), triangles = mesh.indices.size() / 3;
-  // A triangle with a corner twice (a zero-area one, welded) is no part of the surface: in no vertex's
-  // triangles and across from none. Left in, the windows unfolded across its edges came out short of the
-  // straight line.
-  const auto collapsed = [&](std::size_t t) {
-    const std::uint32_t* c = &mesh.indices[3 * t];
-    return c[0] == c[1] || c[1] == c[2] || c[2] == c[0];
-  };
   first_triangle_.assign(vertices + 1, 0);
-  for (std::size_t t = 0; t < triangles; ++t)
-    if (!collapsed(t))
-      for (int k = 0; k < 3; ++k) ++first_triangle_[mesh.indices[3 * t + k] + 1];
+  for (const std::uint32_t v : mesh.indices) ++first_triangle_[v + 1];
   for (std::size_t v = 0; v < vertices; ++v) first_triangle_[v + 1] += first_triangle_[v];
-  vertex_triangles_.resize(first_triangle_[vertices]);
+  vertex_triangles_.resize(mesh.indices.size());
   std::vector<std::uint32_t> filled(first_triangle_.begin(), first_triangle_.end() - 1);
   for (std::size_t t = 0; t < triangles; ++t)
-    if (!collapsed(t))
-      for (int k = 0; k < 3; ++k) vertex_triangles_[filled[mesh.indices[3 * t + k]]++] = std::uint32_t(t);
+    for (int k = 0; k < 3; ++k) vertex_triangles_[filled[mesh.indices[3 * t + k]]++] = std::uint32_t(t);
 
   // The triangle across each edge: edges sorted by their corners; an edge of more than two triangles
   // (non-manifold) is left without one.
   std::vector<std::tuple<std::uint32_t, std::uint32_t, std::uint32_t>> edges;  // low, high, 3t + e
   edges.reserve(mesh.indices.size());
   for (std::size_t t = 0; t < triangles; ++t) {
-    for (int e = 0; e < 3 && !collapsed(t); ++e) {
+    for (int e = 0; e < 3; ++e) {
       const std::uint32_t p = mesh.indices[3 * t + e], q = mesh.indices[3 * t + (e + 1) % 3];
       edges.emplace_back(std::min(p, q), std::max(p, q), std::uint32_t(3 * t + e));
     }
@@ -113,7 +103,7 @@ GeodesicField::GeodesicField(const Mesh& mesh) : mesh_(mesh) {
   fan_start_.assign(mesh.indices.size(), 0.0f);
   fan_angle_.assign(vertices, 0.0f);
   for (std::size_t t = 0; t < triangles; ++t) {
-    for (int k = 0; k < 3 && !collapsed(t); ++k) {
+    for (int k = 0; k < 3; ++k) {
       const glm::dvec3 corner = mesh.positions_mm[mesh.indices[3 * t + k]],
                        to_a = glm::dvec3(mesh.positions_mm[mesh.indices[3 * t + (k + 1) % 3]]) - corner,
                        to_b = glm::dvec3(mesh.positions_mm[mesh.indices[3 * t + (k + 2) % 3]]) - corner;

@@ -64,15 +64,6 @@ void GeodesicField::light(std::uint32_t triangle, glm::vec3 point_mm) {
     }
   };
   int on_edge = -1;
-  if (corners[0] == corners[1] || corners[1] == corners[2] || corners[2] == corners[0]) {
-    // A triangle with a corner twice is no part of the surface (GeodesicField's constructor): the paths
-    // leave the contact through its corners.
-    for (int k = 0; k < 3; ++k) {
-      arrival_[corners[k]] = std::numeric_limits<float>::quiet_NaN();  // every way round it
-      emit(corners[k], distance_[corners[k]]);
-    }
-    on_edge = 3;
-  }
   for (int e = 0; e < 3 && on_edge < 3; ++e) {
     const float length = layout_[3 * std::size_t(triangle) + (e + 2) % 3].edge_mm;
     const glm::dvec3 p = mesh_.positions_mm[corners[e]], q = mesh_.positions_mm[corners[(e + 1) % 3]];
