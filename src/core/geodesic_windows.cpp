@@ -70,6 +70,7 @@ void GeodesicField::light(std::uint32_t triangle, glm::vec3 point_mm) {
     const double tolerance = 1e-6 * double(length);
     if (glm::distance(p, point) <= tolerance || glm::distance(q, point) <= tolerance) {
       const std::uint32_t corner = glm::distance(p, point) <= tolerance ? corners[e] : corners[(e + 1) % 3];
+      arrival_[corner] = std::numeric_limits<float>::quiet_NaN();  // the source itself: every way round it
       emit(corner, distance_[corner]);
       on_edge = 3;
     } else if (length > 0.0f && in_plane(p, q, point_mm).y <= tolerance) {

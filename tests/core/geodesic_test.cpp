@@ -12,6 +12,7 @@
 #include <glm/geometric.hpp>
 #include <limits>
 #include <random>
+#include <utility>
 
 #include "palpate/core/error.hpp"
 #include "palpate/core/shapes.hpp"
@@ -78,15 +79,24 @@ TEST(Geodesic, OnAJitteredPlaneItIsTheStraightLineDistance) {
   EXPECT_LT(marched.max_mm, 0.1f);
 }
 
-// A contact on a corner or on an edge lights every triangle round it.
+// A contact on a corner or on an edge lights every triangle round it; so does one that lies within a
+// millionth of an edge of a corner (near the origin, where floats can tell it apart).
 TEST(Geodesic, FromACornerOrAnEdgeItIsTheStraightLineDistance) {
   const Mesh grid = make_jittered_grid();
   const std::uint32_t middle = std::uint32_t(grid.triangle_count() / 2 + 50);
   const glm::vec3 corner = grid.positions_mm[grid.indices[3 * middle]],
                   on_edge = 0.5f * (corner + grid.positions_mm[grid.indices[3 * middle + 1]]);
-  for (const glm::vec3 point : {corner, on_edge}) {
+  std::uint32_t at_origin = 0;  // a triangle with the corner nearest the origin as its first
+  for (std::uint32_t t = 0; t < grid.triangle_count(); ++t)
+    if (glm::length(grid.positions_mm[grid.indices[3 * t]]) <
+        glm::length(grid.positions_mm[grid.indices[3 * at_origin]]))
+      at_origin = t;
+  const glm::vec3 near_corner = grid.positions_mm[grid.indices[3 * at_origin]] + glm::vec3(3e-7f, 0.0f, 0.0f);
+  ASSERT_NE(near_corner, grid.positions_mm[grid.indices[3 * at_origin]]);
+  for (const auto& [triangle, point] :
+       {std::pair{middle, corner}, std::pair{middle, on_edge}, std::pair{at_origin, near_corner}}) {
     const Errors errors =
-        march(grid, middle, point, 10.0f, [&](glm::vec3 p) { return glm::distance(p, point); });
+        march(grid, triangle, point, 10.0f, [&](glm::vec3 p) { return glm::distance(p, point); });
     std::printf("from (%.3f, %.3f): %zu vertices, error max %.5f mm\n", point.x, point.y, errors.reached,
                 errors.max_mm);
     EXPECT_GT(errors.reached, 250u);  // about pi 10^2
