@@ -217,13 +217,15 @@ void GeodesicField::propagate(const Window& lit) {
   // Where the ray from the source through the third corner crosses the edge.
   const double through_corner = w.sx + (cx - w.sx) * w.sy / (w.sy + cy);
   const std::uint32_t third = c[(w.edge + 2) % 3];
-  const double to_source = glm::distance(source, corner);
-  if (through_corner >= w.b0 && through_corner <= w.b1 && float(w.sigma + to_source) < distance_[third]) {
-    // It arrives from the source, at this angle from the corner's edge to a.
-    const double turn = std::acos(
-        std::clamp(glm::dot(a - corner, source - corner) / (glm::length(corner) * to_source), -1.0, 1.0));
-    lower(third, float(w.sigma + to_source),
-          fan_start_[3 * std::size_t(w.triangle) + (w.edge + 2) % 3] + float(turn));
+  if (through_corner >= w.b0 && through_corner <= w.b1) {
+    const double to_source = glm::distance(source, corner);
+    if (float(w.sigma + to_source) < distance_[third]) {
+      // It arrives from the source, at this angle from the corner's edge to a.
+      const double turn = std::acos(
+          std::clamp(glm::dot(a - corner, source - corner) / (glm::length(corner) * to_source), -1.0, 1.0));
+      lower(third, float(w.sigma + to_source),
+            fan_start_[3 * std::size_t(w.triangle) + (w.edge + 2) % 3] + float(turn));
+    }
   }
   // On the edge from a to the corner, the ray through x on the edge meets it at this fraction from a.
   if (through_corner > w.b0) {

@@ -124,9 +124,8 @@ class GeodesicField {
   std::vector<std::uint8_t> across_edge_;        // which edge of that triangle it is
   std::vector<std::uint8_t> pseudo_source_;      // a saddle (corners' angles over 2 pi) or on a boundary
   std::vector<float> corner_angle_, fan_start_;  // [3t + k]: the corner's angle; where it starts round it
-  std::vector<float>
-      fan_angle_;  // each vertex's corners' angles; NaN where its triangles do not close round it
-  std::vector<float> arrival_;  // where the path to a vertex arrives, as an angle round it (NaN: unknown)
+  std::vector<float> fan_angle_;  // each vertex's corners' angles; NaN: its triangles do not close round it
+  std::vector<float> arrival_;    // where the path to a vertex arrives, as an angle round it (NaN: unknown)
   std::vector<std::uint8_t> exact_;  // within exact_mm: the march leaves it as the windows found it
   std::vector<Window> windows_;
   // The windows waiting, in buckets of their nearest distance to the contact: taken nearest bucket
