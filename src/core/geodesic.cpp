@@ -68,37 +68,42 @@ GeodesicField::GeodesicField(const Mesh& mesh) : mesh_(mesh) {
     }
   }
   std::sort(edges.begin(), edges.end());
-  across_.assign(mesh.indices.size(), -1);
-  across_edge_.assign(mesh.indices.size(), 0);
+  triangle_.resize(triangles);
+  for (std::size_t t = 0; t < triangles; ++t) {
+    for (int k = 0; k < 3; ++k) {
+      triangle_[t].corner[k] = mesh.indices[3 * t + k];
+      triangle_[t].across[k] = -1;
+    }
+  }
   for (std::size_t i = 0; i < edges.size();) {
     std::size_t j = i + 1;
     while (j < edges.size() && std::get<0>(edges[j]) == std::get<0>(edges[i]) &&
            std::get<1>(edges[j]) == std::get<1>(edges[i]))
       ++j;
     if (j - i == 2) {
-      across_[std::get<2>(edges[i])] = std::int32_t(std::get<2>(edges[i + 1]) / 3);
-      across_[std::get<2>(edges[i + 1])] = std::int32_t(std::get<2>(edges[i]) / 3);
-      across_edge_[std::get<2>(edges[i])] = std::uint8_t(std::get<2>(edges[i + 1]) % 3);
-      across_edge_[std::get<2>(edges[i + 1])] = std::uint8_t(std::get<2>(edges[i]) % 3);
+      for (const auto& [one, other] : {std::pair(i, i + 1), std::pair(i + 1, i)}) {
+        const std::uint32_t at = std::get<2>(edges[one]), beyond = std::get<2>(edges[other]);
+        triangle_[at / 3].across[at % 3] = std::int32_t(beyond / 3);
+        triangle_[at / 3].across_edge[at % 3] = std::uint8_t(beyond % 3);
+      }
     }
     i = j;
   }
 
-  layout_.resize(mesh.indices.size());
   for (std::size_t t = 0; t < triangles; ++t) {
     for (int k = 0; k < 3; ++k) {
       const glm::vec3 pa = mesh.positions_mm[mesh.indices[3 * t + (k + 1) % 3]],
                       pb = mesh.positions_mm[mesh.indices[3 * t + (k + 2) % 3]];
       const float length = glm::distance(pa, pb);
-      layout_[3 * t + k] = {length, length > 0.0f
-                                        ? in_plane(pa, pb, mesh.positions_mm[mesh.indices[3 * t + k]])
-                                        : glm::vec2(0.0f)};
+      triangle_[t].layout[k] = {length, length > 0.0f
+                                            ? in_plane(pa, pb, mesh.positions_mm[mesh.indices[3 * t + k]])
+                                            : glm::vec2(0.0f)};
     }
   }
   // Shortest paths bend only at vertices whose corners' angles pass 2 pi (saddles) and on boundaries,
   // and there only by pi or more on either side: each corner's angle, and where its sector starts going
   // round its vertex (from the edge to the next corner), for the vertices whose triangles close round them.
-  pseudo_source_.assign(vertices, 0);
+  vertex_.assign(vertices, VertexState{});
   corner_angle_.assign(mesh.indices.size(), 0.0f);
   fan_start_.assign(mesh.indices.size(), 0.0f);
   fan_angle_.assign(vertices, 0.0f);
@@ -111,9 +116,9 @@ GeodesicField::GeodesicField(const Mesh& mesh) : mesh_(mesh) {
       if (lengths > 0.0)
         corner_angle_[3 * t + k] = float(std::acos(std::clamp(glm::dot(to_a, to_b) / lengths, -1.0, 1.0)));
       fan_angle_[mesh.indices[3 * t + k]] += corner_angle_[3 * t + k];
-      if (across_[3 * t + k] < 0) {
-        pseudo_source_[mesh.indices[3 * t + k]] = 1;
-        pseudo_source_[mesh.indices[3 * t + (k + 1) % 3]] = 1;
+      if (triangle_[t].across[k] < 0) {
+        vertex_[mesh.indices[3 * t + k]].pseudo_source = true;
+        vertex_[mesh.indices[3 * t + (k + 1) % 3]].pseudo_source = true;
       }
     }
   }
@@ -122,7 +127,7 @@ GeodesicField::GeodesicField(const Mesh& mesh) : mesh_(mesh) {
     return c[0] == v ? 0 : c[1] == v ? 1 : 2;
   };
   for (std::uint32_t v = 0; v < vertices; ++v) {
-    if (fan_angle_[v] > 2.0 * std::numbers::pi * (1.0 + 1e-6)) pseudo_source_[v] = 1;
+    if (fan_angle_[v] > 2.0 * std::numbers::pi * (1.0 + 1e-6)) vertex_[v].pseudo_source = true;
     const std::span<const std::uint32_t> fan = triangles_around(v);
     std::size_t walked = 0;
     float at = 0.0f;
@@ -130,7 +135,7 @@ GeodesicField::GeodesicField(const Mesh& mesh) : mesh_(mesh) {
       const int k = corner_of(t, v);
       fan_start_[3 * std::size_t(t) + k] = at;
       at += corner_angle_[3 * std::size_t(t) + k];
-      const std::int32_t next = across_[3 * std::size_t(t) + (k + 2) % 3];  // across the edge from k + 2 to k
+      const std::int32_t next = triangle_[t].across[(k + 2) % 3];  // across the edge from k + 2 to k
       if (next < 0 || mesh.indices[3 * std::size_t(next) + (corner_of(std::uint32_t(next), v) + 1) % 3] !=
                           mesh.indices[3 * std::size_t(t) + (k + 2) % 3])
         break;
@@ -142,22 +147,14 @@ GeodesicField::GeodesicField(const Mesh& mesh) : mesh_(mesh) {
     }
     if (walked != fan.size()) fan_angle_[v] = std::numeric_limits<float>::quiet_NaN();  // not a closed fan
   }
-  arrival_.assign(vertices, 0.0f);
-  exact_.assign(vertices, 0);
-  distance_.assign(vertices, infinity);
-  unchecked_.assign(vertices, 0);
-  queued_.assign(vertices, 0);
   queue_.resize(std::max<std::size_t>(vertices, 1));
-  along_edge_.assign(vertices, 0);
-  alive_.assign(vertices, 0);
-  heap_position_.assign(vertices, -1);
   heap_.reserve(vertices);
   touched_.reserve(vertices);
   reached_.reserve(vertices);
 }
 
 float GeodesicField::distance_mm(std::uint32_t vertex) const noexcept {
-  return vertex < distance_.size() ? distance_[vertex] : infinity;
+  return vertex < vertex_.size() ? vertex_[vertex].distance : infinity;
 }
 
 void GeodesicField::compute(std::uint32_t triangle, glm::vec3 point_mm, float radius_mm) {
@@ -165,18 +162,13 @@ void GeodesicField::compute(std::uint32_t triangle, glm::vec3 point_mm, float ra
 }
 
 void GeodesicField::compute(std::uint32_t triangle, glm::vec3 point_mm, float radius_mm, Reach reach) {
-  if (std::size_t(triangle) * 3 >= mesh_.indices.size()) {
+  if (triangle >= triangle_.size()) {
     throw Error("GeodesicField: triangle " + std::to_string(triangle) + " of " +
-                std::to_string(mesh_.indices.size() / 3));
+                std::to_string(triangle_.size()));
   }
   for (const std::uint32_t v : touched_) {
-    distance_[v] = infinity;
-    alive_[v] = 0;
-    exact_[v] = 0;
-    along_edge_[v] = 0;
-    unchecked_[v] = 0;
-    queued_[v] = 0;
-    heap_position_[v] = -1;
+    VertexState& state = vertex_[v];
+    state = VertexState{.pseudo_source = state.pseudo_source};
   }
   touched_.clear();
   heap_.clear();
@@ -187,35 +179,35 @@ void GeodesicField::compute(std::uint32_t triangle, glm::vec3 point_mm, float ra
   // The march starts from the vertices the windows reached: fixed within exact_mm, beyond it at the
   // length of a real path, which the march may shorten.
   for (const std::uint32_t v : touched_) {
-    if (distance_[v] <= exact_mm_) {
-      exact_[v] = alive_[v] = 1;
+    if (vertex_[v].distance <= exact_mm_) {
+      vertex_[v].exact = vertex_[v].alive = true;
       reached_.push_back(v);
     } else {
-      heap_position_[v] = std::int32_t(heap_.size());
+      vertex_[v].heap_position = std::int32_t(heap_.size());
       heap_.push_back(v);
       sift_up(heap_.size() - 1);
     }
   }
   std::sort(reached_.begin(), reached_.end(),
-            [&](std::uint32_t a, std::uint32_t b) { return distance_[a] < distance_[b]; });
+            [&](std::uint32_t a, std::uint32_t b) { return vertex_[a].distance < vertex_[b].distance; });
   for (const std::uint32_t u : reached_) {
     for (const std::uint32_t t : triangles_around(u)) {
       for (int k = 0; k < 3; ++k) {
-        const std::uint32_t c = mesh_.indices[3 * std::size_t(t) + k];
-        if (!alive_[c]) update(c, t);
+        const std::uint32_t c = triangle_[t].corner[k];
+        if (!vertex_[c].alive) update(c, t);
       }
     }
   }
   while (!heap_.empty()) {
     const std::uint32_t u = pop();
-    alive_[u] = 1;
-    if (distance_[u] > radius_mm) break;
+    vertex_[u].alive = true;
+    if (vertex_[u].distance > radius_mm) break;
     reached_.push_back(u);
     for (std::uint32_t i = first_triangle_[u]; i < first_triangle_[u + 1]; ++i) {
       const std::uint32_t t = vertex_triangles_[i];
       for (int k = 0; k < 3; ++k) {
-        const std::uint32_t c = mesh_.indices[3 * std::size_t(t) + k];
-        if (!alive_[c]) update(c, t);
+        const std::uint32_t c = triangle_[t].corner[k];
+        if (!vertex_[c].alive) update(c, t);
       }
     }
   }
@@ -243,32 +235,35 @@ void GeodesicField::correct(float within_mm) {
   std::size_t head = 0, count = 0;
   const auto enqueue_neighbours = [&](std::uint32_t v) {
     for (const std::uint32_t t : triangles_around(v)) {
-      const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(t)];
+      const std::uint32_t* corners = triangle_[t].corner;
       for (int k = 0; k < 3; ++k) {
         const std::uint32_t n = corners[k];
-        if (n == v || !alive_[n] || exact_[n] || queued_[n] == 2) continue;
-        queued_[n] = 2;
+        if (n == v || !vertex_[n].alive || vertex_[n].exact || vertex_[n].queued == 2) continue;
+        vertex_[n].queued = 2;
         queue_[(head + count++) % queue_.size()] = n;
       }
     }
   };
   for (const std::uint32_t v : reached_) {
-    if ((!along_edge_[v] && !unchecked_[v] && !queued_[v]) || exact_[v] || distance_[v] > within_mm) continue;
-    const bool carried_on = along_edge_[v] || queued_[v];
-    const float before = distance_[v], after = update_again(v);
+    if ((!vertex_[v].along_edge && !vertex_[v].unchecked && !vertex_[v].queued) || vertex_[v].exact ||
+        vertex_[v].distance > within_mm)
+      continue;
+    const bool carried_on = vertex_[v].along_edge || vertex_[v].queued;
+    const float before = vertex_[v].distance, after = update_again(v);
     if (std::abs(after - before) > before * 1e-2f) enqueue_neighbours(v);
     if (carried_on && std::abs(after - before) > before * 1e-3f) {
       for (const std::uint32_t t : triangles_around(v)) {
-        const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(t)];
-        for (int k = 0; k < 3; ++k) queued_[corners[k]] = std::max<std::uint8_t>(queued_[corners[k]], 1);
+        const std::uint32_t* corners = triangle_[t].corner;
+        for (int k = 0; k < 3; ++k)
+          vertex_[corners[k]].queued = std::max<std::uint8_t>(vertex_[corners[k]].queued, 1);
       }
     }
   }
   while (count > 0) {
     const std::uint32_t v = queue_[head];
     head = (head + 1) % queue_.size(), --count;
-    queued_[v] = 0;
-    const float before = distance_[v], after = update_again(v);
+    vertex_[v].queued = 0;
+    const float before = vertex_[v].distance, after = update_again(v);
     if (std::abs(after - before) > before * 1e-2f) enqueue_neighbours(v);
   }
 }
@@ -276,38 +271,41 @@ void GeodesicField::correct(float within_mm) {
 // A vertex's distance from all its triangles, now that its neighbours are known: lowered, or afresh where
 // the march could not check its source.
 float GeodesicField::update_again(std::uint32_t v) {
-  if (unchecked_[v]) distance_[v] = infinity;  // afresh: the update checks its source only below this
-  unchecked_[v] = 0;
-  float best = distance_[v];
+  // Afresh where unchecked: the update checks its source only below the distance it has.
+  if (vertex_[v].unchecked) vertex_[v].distance = infinity;
+  vertex_[v].unchecked = false;
+  float best = vertex_[v].distance;
   for (const std::uint32_t t : triangles_around(v)) {
-    const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(t)];
+    const std::uint32_t* corners = triangle_[t].corner;
     const int k = corners[0] == v ? 0 : corners[1] == v ? 1 : 2;
     best = std::min(best, along_edges(t, k));
-    if (alive_[corners[(k + 1) % 3]] && alive_[corners[(k + 2) % 3]])
+    if (vertex_[corners[(k + 1) % 3]].alive && vertex_[corners[(k + 2) % 3]].alive)
       best = std::min(best, unfolded_update(t, k));
   }
-  return distance_[v] = best;
+  return vertex_[v].distance = best;
 }
 
 // The arrival at the triangle's corner k along an edge from one of the other two that is fixed.
 float GeodesicField::along_edges(std::uint32_t triangle, int k) const {
-  const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(triangle)];
+  const std::uint32_t* corners = triangle_[triangle].corner;
   const std::uint32_t a = corners[(k + 1) % 3], b = corners[(k + 2) % 3];
-  const Layout* layout = &layout_[3 * std::size_t(triangle)];
+  const Layout* layout = triangle_[triangle].layout;
   float along = infinity;
-  if (alive_[a]) along = std::min(along, distance_[a] + layout[(k + 2) % 3].edge_mm);
-  if (alive_[b]) along = std::min(along, distance_[b] + layout[(k + 1) % 3].edge_mm);
+  if (vertex_[a].alive) along = std::min(along, vertex_[a].distance + layout[(k + 2) % 3].edge_mm);
+  if (vertex_[b].alive) along = std::min(along, vertex_[b].distance + layout[(k + 1) % 3].edge_mm);
   return along;
 }
 
 void GeodesicField::update(std::uint32_t c, std::uint32_t triangle) {
-  const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(triangle)];
+  const std::uint32_t* corners = triangle_[triangle].corner;
   const int k = corners[0] == c ? 0 : corners[1] == c ? 1 : 2;
   const std::uint32_t a = corners[(k + 1) % 3], b = corners[(k + 2) % 3];
   const float along_edge = along_edges(triangle, k);
   bool unchecked = false;
-  const float through = alive_[a] && alive_[b] ? unfolded_update(triangle, k, &unchecked) : infinity;
-  if (std::min(along_edge, through) < distance_[c]) unchecked_[c] = unchecked && through < along_edge;
+  const float through =
+      vertex_[a].alive && vertex_[b].alive ? unfolded_update(triangle, k, &unchecked) : infinity;
+  if (std::min(along_edge, through) < vertex_[c].distance)
+    vertex_[c].unchecked = unchecked && through < along_edge;
   push_or_lower(c, std::min(along_edge, through), !(through < along_edge));
 }
 
@@ -322,39 +320,44 @@ void GeodesicField::update(std::uint32_t c, std::uint32_t triangle) {
 // march, checked only where the update would lower the vertex.
 float GeodesicField::unless_a_false_source(std::uint32_t triangle, int k, glm::vec2 source, glm::vec2 c2,
                                            float distance, bool* unchecked) const {
-  const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(triangle)];
+  const std::uint32_t* corners = triangle_[triangle].corner;
   const std::uint32_t a = corners[(k + 1) % 3], b = corners[(k + 2) % 3];
-  const std::int32_t beyond = across_[3 * std::size_t(triangle) + (k + 1) % 3];  // the edge from a to b
+  const std::int32_t beyond = triangle_[triangle].across[(k + 1) % 3];  // the edge from a to b
   if (beyond < 0) return distance;
-  const std::uint32_t* far = &mesh_.indices[3 * std::size_t(beyond)];
+  const std::uint32_t* far = triangle_[beyond].corner;
   const int j = far[0] != a && far[0] != b ? 0 : far[1] != a && far[1] != b ? 1 : 2;
   const std::uint32_t x = far[j];
-  if (!alive_[x]) {
+  if (!vertex_[x].alive) {
     if (unchecked) *unchecked = true;
     return distance;
   }
   // x as laid out in its own triangle, over the same edge from a to b or from b to a, mirrored below it.
-  const Layout& at_x = layout_[3 * std::size_t(beyond) + j];
-  const glm::vec2 a2(0.0f), b2(layout_[3 * std::size_t(triangle) + k].edge_mm, 0.0f),
+  const Layout& at_x = triangle_[beyond].layout[j];
+  const glm::vec2 a2(0.0f), b2(triangle_[triangle].layout[k].edge_mm, 0.0f),
       x2 = far[(j + 1) % 3] == a ? glm::vec2(at_x.corner.x, -at_x.corner.y)
                                  : glm::vec2(b2.x - at_x.corner.x, -at_x.corner.y);
-  if (!(distance_[x] > glm::distance(source, x2) * 1.02f)) return distance;
-  return std::min({distance_[a] + glm::length(c2), distance_[b] + glm::distance(b2, c2),
-                   planar_update(a2, distance_[a], x2, distance_[x], c2),
-                   planar_update(x2, distance_[x], b2, distance_[b], c2)});
+  if (!(vertex_[x].distance > glm::distance(source, x2) * 1.02f)) return distance;
+  return std::min({vertex_[a].distance + glm::length(c2), vertex_[b].distance + glm::distance(b2, c2),
+                   planar_update(a2, vertex_[a].distance, x2, vertex_[x].distance, c2),
+                   planar_update(x2, vertex_[x].distance, b2, vertex_[b].distance, c2)});
 }
 
 GeodesicField::Across GeodesicField::across(std::uint32_t triangle, std::uint32_t p, std::uint32_t q) const {
-  const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(triangle)];
+  const std::uint32_t* corners = triangle_[triangle].corner;
   int edge = -1;
   for (int e = 0; e < 3; ++e) {
     const std::uint32_t u = corners[e], v = corners[(e + 1) % 3];
     if ((u == p && v == q) || (u == q && v == p)) edge = e;
   }
-  const std::int32_t next = edge < 0 ? -1 : across_[3 * std::size_t(triangle) + edge];
-  if (next < 0) return {-1, 0};
-  const std::uint32_t* far = &mesh_.indices[3 * std::size_t(next)];
-  return {next, far[0] != p && far[0] != q ? far[0] : far[1] != p && far[1] != q ? far[1] : far[2]};
+  const std::int32_t next = edge < 0 ? -1 : triangle_[triangle].across[edge];
+  if (next < 0) return {-1, 0, 0.0f, 0.0f};
+  // The edge is (e, e + 1) of the triangle beyond: the corner is e + 2, its edges the ones across from e + 1
+  // and e.
+  const Triangle& far = triangle_[next];
+  const int e = triangle_[triangle].across_edge[edge];
+  const float from_first = far.layout[(e + 1) % 3].edge_mm, from_second = far.layout[e].edge_mm;
+  return far.corner[e] == p ? Across{next, far.corner[(e + 2) % 3], from_first, from_second}
+                            : Across{next, far.corner[(e + 2) % 3], from_second, from_first};
 }
 
 // The triangle's own update from the source its corners a and b place; at an obtuse corner c, Kimmel and
@@ -363,14 +366,14 @@ GeodesicField::Across GeodesicField::across(std::uint32_t triangle, std::uint32_
 // the strip, not along an edge. Up to `max_unfoldings` triangles.
 float GeodesicField::unfolded_update(std::uint32_t triangle, int k, bool* unchecked) const {
   constexpr int max_unfoldings = 6;
-  const std::uint32_t* corners = &mesh_.indices[3 * std::size_t(triangle)];
+  const std::uint32_t* corners = triangle_[triangle].corner;
   const std::uint32_t c = corners[k], a = corners[(k + 1) % 3], b = corners[(k + 2) % 3];
-  const Layout* layout = &layout_[3 * std::size_t(triangle)];
+  const Layout* layout = triangle_[triangle].layout;
   const glm::vec2 a2(0.0f), b2(layout[k].edge_mm, 0.0f), c2 = layout[k].corner;
   glm::vec2 source(std::numeric_limits<float>::quiet_NaN());
-  float best = planar_update_on_edge(layout[k].edge_mm, distance_[a], distance_[b], c2,
+  float best = planar_update_on_edge(layout[k].edge_mm, vertex_[a].distance, vertex_[b].distance, c2,
                                      layout[(k + 2) % 3].edge_mm, layout[(k + 1) % 3].edge_mm, &source);
-  if (source.x == source.x && best < distance_[c])  // else it changes nothing: spare the check
+  if (source.x == source.x && best < vertex_[c].distance)  // else it changes nothing: spare the check
     best = unless_a_false_source(triangle, k, source, c2, best, unchecked);
   if (glm::dot(a2 - c2, b2 - c2) >= 0.0f) return best;  // not obtuse at c
 
@@ -387,16 +390,15 @@ float GeodesicField::unfolded_update(std::uint32_t triangle, int k, bool* unchec
     const float length = glm::length(edge2);
     if (!(length > 0.0f)) return best;
     const glm::vec2 u = edge2 / length, n(-u.y, u.x);
-    const float dp = glm::distance(mesh_.positions_mm[p], mesh_.positions_mm[d]);
-    const float dq = glm::distance(mesh_.positions_mm[q], mesh_.positions_mm[d]);
+    const float dp = beyond.from_p_mm, dq = beyond.from_q_mm;
     const float x = (dp * dp - dq * dq + length * length) / (2.0f * length);
     const float side = glm::dot(behind - p2, n) >= 0.0f ? -1.0f : 1.0f;
     const glm::vec2 d2 = p2 + u * x + n * (side * std::sqrt(std::max(dp * dp - x * x, 0.0f)));
     const bool acute_to_a = glm::dot(a2 - c2, d2 - c2) > 0.0f, acute_to_b = glm::dot(b2 - c2, d2 - c2) > 0.0f;
     if (acute_to_a && acute_to_b) {  // d' splits the obtuse corner
-      if (!alive_[d]) return best;
-      best = std::min(best, planar_update(a2, distance_[a], d2, distance_[d], c2));
-      return std::min(best, planar_update(d2, distance_[d], b2, distance_[b], c2));
+      if (!vertex_[d].alive) return best;
+      best = std::min(best, planar_update(a2, vertex_[a].distance, d2, vertex_[d].distance, c2));
+      return std::min(best, planar_update(d2, vertex_[d].distance, b2, vertex_[b].distance, c2));
     }
     // Onward across the edge of the new triangle on the section's side: d' leaning toward b (not acute
     // to a) leaves the section between a's side and d', so across (p, d); else across (d, q). The next
@@ -414,24 +416,24 @@ float GeodesicField::unfolded_update(std::uint32_t triangle, int k, bool* unchec
 }
 
 void GeodesicField::push_or_lower(std::uint32_t vertex, float distance, bool along_edge) {
-  if (!(distance < distance_[vertex])) return;
-  if (distance_[vertex] == infinity && heap_position_[vertex] < 0) touched_.push_back(vertex);
-  distance_[vertex] = distance;
-  along_edge_[vertex] = along_edge;
-  if (heap_position_[vertex] < 0) {
-    heap_position_[vertex] = std::int32_t(heap_.size());
+  if (!(distance < vertex_[vertex].distance)) return;
+  if (vertex_[vertex].distance == infinity && vertex_[vertex].heap_position < 0) touched_.push_back(vertex);
+  vertex_[vertex].distance = distance;
+  vertex_[vertex].along_edge = along_edge;
+  if (vertex_[vertex].heap_position < 0) {
+    vertex_[vertex].heap_position = std::int32_t(heap_.size());
     heap_.push_back(vertex);
   }
-  sift_up(std::size_t(heap_position_[vertex]));
+  sift_up(std::size_t(vertex_[vertex].heap_position));
 }
 
 std::uint32_t GeodesicField::pop() {
   const std::uint32_t top = heap_.front();
-  heap_position_[top] = -1;
+  vertex_[top].heap_position = -1;
   heap_.front() = heap_.back();
   heap_.pop_back();
   if (!heap_.empty()) {
-    heap_position_[heap_.front()] = 0;
+    vertex_[heap_.front()].heap_position = 0;
     sift_down(0);
   }
   return top;
@@ -440,10 +442,10 @@ std::uint32_t GeodesicField::pop() {
 void GeodesicField::sift_up(std::size_t at) {
   while (at > 0) {
     const std::size_t parent = (at - 1) / 2;
-    if (!(distance_[heap_[at]] < distance_[heap_[parent]])) break;
+    if (!(vertex_[heap_[at]].distance < vertex_[heap_[parent]].distance)) break;
     std::swap(heap_[at], heap_[parent]);
-    heap_position_[heap_[at]] = std::int32_t(at);
-    heap_position_[heap_[parent]] = std::int32_t(parent);
+    vertex_[heap_[at]].heap_position = std::int32_t(at);
+    vertex_[heap_[parent]].heap_position = std::int32_t(parent);
     at = parent;
   }
 }
@@ -452,12 +454,13 @@ void GeodesicField::sift_down(std::size_t at) {
   for (;;) {
     const std::size_t left = 2 * at + 1, right = left + 1;
     std::size_t least = at;
-    if (left < heap_.size() && distance_[heap_[left]] < distance_[heap_[least]]) least = left;
-    if (right < heap_.size() && distance_[heap_[right]] < distance_[heap_[least]]) least = right;
+    if (left < heap_.size() && vertex_[heap_[left]].distance < vertex_[heap_[least]].distance) least = left;
+    if (right < heap_.size() && vertex_[heap_[right]].distance < vertex_[heap_[least]].distance)
+      least = right;
     if (least == at) return;
     std::swap(heap_[at], heap_[least]);
-    heap_position_[heap_[at]] = std::int32_t(at);
-    heap_position_[heap_[least]] = std::int32_t(least);
+    vertex_[heap_[at]].heap_position = std::int32_t(at);
+    vertex_[heap_[least]].heap_position = std::int32_t(least);
     at = least;
   }
 }

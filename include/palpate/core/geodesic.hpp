@@ -94,6 +94,7 @@ class GeodesicField {
   struct Across {
     std::int32_t triangle;
     std::uint32_t corner;
+    float from_p_mm, from_q_mm;  // the corner's edges to p and q
   };
   Across across(std::uint32_t triangle, std::uint32_t p, std::uint32_t q) const;
   void update(std::uint32_t vertex, std::uint32_t triangle);
@@ -119,14 +120,17 @@ class GeodesicField {
     float edge_mm;
     glm::vec2 corner;
   };
-  std::vector<Layout> layout_;        // layout_[3t + k]
-  std::vector<std::int32_t> across_;  // across_[3t + e]: the triangle beyond edge e (corners e, e+1) of t
-  std::vector<std::uint8_t> across_edge_;        // which edge of that triangle it is
-  std::vector<std::uint8_t> pseudo_source_;      // a saddle (corners' angles over 2 pi) or on a boundary
+  // What the windows and the march read of a triangle, in one cache line.
+  struct alignas(64) Triangle {
+    std::uint32_t corner[3];      // Mesh::indices
+    std::int32_t across[3];       // the triangle beyond edge e (corners e, e + 1); -1: none
+    std::uint8_t across_edge[3];  // which edge of that triangle it is
+    Layout layout[3];
+  };
+  static_assert(sizeof(Triangle) == 64);
+  std::vector<Triangle> triangle_;
   std::vector<float> corner_angle_, fan_start_;  // [3t + k]: the corner's angle; where it starts round it
   std::vector<float> fan_angle_;  // each vertex's corners' angles; NaN: its triangles do not close round it
-  std::vector<float> arrival_;    // where the path to a vertex arrives, as an angle round it (NaN: unknown)
-  std::vector<std::uint8_t> exact_;  // within exact_mm: the march leaves it as the windows found it
   std::vector<Window> windows_;
   // The windows waiting, in buckets of their nearest distance to the contact: taken nearest bucket
   // first, each bucket last in, first out. Any order gives the exact paths (every filter compares with the
@@ -135,13 +139,21 @@ class GeodesicField {
   std::size_t bucket_ = 0;
   float exact_mm_ = 0.0f;
   std::size_t window_budget_ = 0;
-  std::vector<float> distance_;
-  std::vector<std::uint8_t> alive_;
-  std::vector<std::uint8_t> along_edge_;  // the vertex's distance came along an edge, not through a triangle
-  std::vector<std::uint8_t> unchecked_;   // its source could not be checked: computed afresh by correct()
-  std::vector<std::uint8_t> queued_;      // correct(): 1 next to a vertex it lowered, 2 in queue_ besides
+  // Each vertex's state in one record, so that a look at a vertex reads one cache line, not one per array
+  // (the windows and the march visit a patch's vertices in no order the arrays could follow).
+  struct VertexState {
+    float distance = std::numeric_limits<float>::infinity();
+    float arrival = 0.0f;  // where the path to a pseudo-source arrives, as an angle round it (NaN: unknown)
+    std::int32_t heap_position = -1;  // -1: not in the heap
+    bool alive : 1 = false;
+    bool exact : 1 = false;          // within exact_mm: the march leaves it as the windows found it
+    bool along_edge : 1 = false;     // its distance came along an edge, not through a triangle
+    bool unchecked : 1 = false;      // its source could not be checked: computed afresh by correct()
+    std::uint8_t queued : 2 = 0;     // correct(): 1 next to a vertex it lowered, 2 in queue_ besides
+    bool pseudo_source : 1 = false;  // a saddle (corners' angles over 2 pi) or on a boundary; kept
+  };
+  std::vector<VertexState> vertex_;
   std::vector<std::uint32_t> queue_;
-  std::vector<std::int32_t> heap_position_;  // -1: not in the heap
   std::vector<std::uint32_t> heap_, touched_, reached_;
 };
 
