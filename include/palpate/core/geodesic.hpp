@@ -152,6 +152,7 @@ class GeodesicField {
     std::uint8_t queued : 2 = 0;     // correct(): 1 next to a vertex it lowered, 2 in queue_ besides
     bool pseudo_source : 1 = false;  // a saddle (corners' angles over 2 pi) or on a boundary; kept
   };
+  static_assert(sizeof(VertexState) == 16);
   std::vector<VertexState> vertex_;
   std::vector<std::uint32_t> queue_;
   std::vector<std::uint32_t> heap_, touched_, reached_;
