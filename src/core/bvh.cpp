@@ -5,6 +5,7 @@
 #include <cmath>
 #include <glm/common.hpp>
 #include <glm/geometric.hpp>
+#include <glm/vector_relational.hpp>
 #include <limits>
 
 namespace palpate {
@@ -137,8 +138,43 @@ BvhHit Bvh::make_hit(std::uint32_t primitive, const glm::dvec3& point) const noe
   return hit;
 }
 
+bool Bvh::Neighbourhood::covers(const glm::dvec3& point) const noexcept {
+  return count > 0 && glm::all(glm::greaterThanEqual(point, glm::dvec3(low) + inner_margin_mm)) &&
+         glm::all(glm::lessThanEqual(point, glm::dvec3(high) - inner_margin_mm));
+}
+
+bool Bvh::gather(Neighbourhood& near, glm::vec3 low, glm::vec3 high, float subtree_extent_mm) const noexcept {
+  near.count = 0;
+  near.low = low;
+  near.high = high;
+  near.gathered_from = nodes_.data();
+  if (nodes_.empty()) return false;
+  std::uint32_t stack[max_depth + 1];  // one sibling waits per level, plus the node popped next
+  std::size_t top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const std::uint32_t index = stack[--top];
+    const Node& node = nodes_[index];
+    if (!(node.min.x <= high.x && low.x <= node.max.x && node.min.y <= high.y && low.y <= node.max.y &&
+          node.min.z <= high.z && low.z <= node.max.z))
+      continue;
+    const glm::vec3 extent = node.max - node.min;
+    if (node.count > 0 || std::max(std::max(extent.x, extent.y), extent.z) <= subtree_extent_mm) {
+      if (near.count == Neighbourhood::capacity) {
+        near.count = 0;
+        return false;
+      }
+      near.roots[std::size_t(near.count++)] = index;
+      continue;
+    }
+    stack[top++] = node.first + 1;
+    stack[top++] = node.first;
+  }
+  return near.count > 0;
+}
+
 BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces, double start_tolerance_mm,
-                      ObjectMask seen) const noexcept {
+                      ObjectMask seen, const Neighbourhood* near) const noexcept {
   if (nodes_.empty()) return {};
   const glm::dvec3 d = to - from;
   const glm::vec3 origin(from);
@@ -150,51 +186,65 @@ BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
   }
   double best_t = 2.0;  // above any segment parameter
   std::uint32_t best = 0;
-  std::uint32_t stack[max_depth];
-  std::size_t top = 0;
-  if (entry(nodes_[0], origin, inverse, 1.0f) == no_entry) return {};
-  std::uint32_t current = 0;
-  for (;;) {
-    const Node& node = nodes_[current];
-    if (node.count > 0) {
-      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
-        double t;
-        if (cross_triangle(triangles_[i], from, d, faces, start_tolerance_mm, t) && t < best_t &&
-            primitive_seen(seen, i)) {
-          best_t = t;
-          best = i;
+  // Every subtree the segment enters before `limit` (and before the best hit so far), nearer child
+  // first; the farther waits on the stack and is re-culled against the best hit when popped. Ties in t
+  // go to the lowest index, so that any set of starting subtrees gives the root's answer.
+  const auto search = [&](const std::uint32_t* starts, int start_count, double limit) {
+    std::uint32_t stack[max_depth + Neighbourhood::capacity];
+    std::size_t top = 0;
+    for (int i = start_count - 1; i >= 0; --i) stack[top++] = starts[i];
+    const auto reach = [&] { return float(std::min(best_t, limit)); };
+    while (top > 0) {
+      std::uint32_t current = stack[--top];
+      if (entry(nodes_[current], origin, inverse, reach()) == no_entry) continue;
+      for (;;) {
+        const Node& node = nodes_[current];
+        if (node.count > 0) {
+          for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
+            double t;
+            if (cross_triangle(triangles_[i], from, d, faces, start_tolerance_mm, t) && t <= limit &&
+                (t < best_t || (t == best_t && i < best)) && primitive_seen(seen, i)) {
+              best_t = t;
+              best = i;
+            }
+          }
+          break;
+        }
+        const float left = entry(nodes_[node.first], origin, inverse, reach());
+        const float right = entry(nodes_[node.first + 1], origin, inverse, reach());
+        if (left != no_entry && right != no_entry) {
+          const bool left_first = left <= right;
+          stack[top++] = left_first ? node.first + 1 : node.first;
+          current = left_first ? node.first : node.first + 1;
+        } else if (left != no_entry) {
+          current = node.first;
+        } else if (right != no_entry) {
+          current = node.first + 1;
+        } else {
+          break;
         }
       }
-    } else {
-      const float t_max = float(std::min(best_t, 1.0));
-      const float left = entry(nodes_[node.first], origin, inverse, t_max);
-      const float right = entry(nodes_[node.first + 1], origin, inverse, t_max);
-      if (left != no_entry && right != no_entry) {
-        // Nearer child first; the farther waits on the stack and is re-culled against best_t.
-        const bool left_first = left <= right;
-        stack[top++] = left_first ? node.first + 1 : node.first;
-        current = left_first ? node.first : node.first + 1;
-        continue;
-      }
-      if (left != no_entry) {
-        current = node.first;
-        continue;
-      }
-      if (right != no_entry) {
-        current = node.first + 1;
-        continue;
-      }
     }
-    // Pop the next subtree that the segment still reaches before the best hit.
-    bool found = false;
-    while (top > 0) {
-      current = stack[--top];
-      if (entry(nodes_[current], origin, inverse, float(std::min(best_t, 1.0))) != no_entry) {
-        found = true;
-        break;
-      }
+  };
+  // From inside the neighbourhood, the part of the segment within it is searched from its subtrees
+  // alone (they hold every triangle that part can meet); a hit there is the first hit. Otherwise, or
+  // when that part is clear, from the root.
+  if (near != nullptr && near->gathered_from == nodes_.data() && near->covers(from)) {
+    const glm::dvec3 low = glm::dvec3(near->low) + Neighbourhood::inner_margin_mm,
+                     high = glm::dvec3(near->high) - Neighbourhood::inner_margin_mm;
+    double limit = 1.0;
+    for (int a = 0; a < 3; ++a) {
+      if (d[a] > 0.0) limit = std::min(limit, (high[a] - from[a]) / d[a]);
+      if (d[a] < 0.0) limit = std::min(limit, (low[a] - from[a]) / d[a]);
     }
-    if (!found) break;
+    search(near->roots.data(), near->count, limit);
+    if (best_t > 1.0 && limit < 1.0) {
+      const std::uint32_t root = 0;
+      search(&root, 1, 1.0);
+    }
+  } else {
+    const std::uint32_t root = 0;
+    search(&root, 1, 1.0);
   }
   if (best_t > 1.0) return {};
   BvhHit hit = make_hit(best, from + d * best_t);

@@ -91,13 +91,37 @@ class Bvh {
   // The padded bounds of everything; zero for an empty tree.
   Bounds bounds() const noexcept;
 
-  // The first triangle the segment from -> to crosses (smallest t), or no hit. Computed in double
-  // with a watertight edge test, so a segment through a shared edge or vertex of a closed mesh
-  // always hits one of its triangles. A front-face crossing counts when `from` is in front of the
-  // triangle's plane or at most `start_tolerance_mm` behind it (t is then 0), and `to` is on or
-  // behind the plane. Only the objects `seen` names count.
+  // The subtrees that hold every triangle whose bounds meet a box: where a query that stays in the box
+  // can start instead of at the root, skipping the top of the tree (the haptic proxy keeps one around
+  // itself and gathers it again only when it nears the edge). Fixed size, no allocation.
+  struct Neighbourhood {
+    static constexpr int capacity = 32;
+    // Queries trust it only this far inside the box, so that rounding at its faces never matters.
+    static constexpr double inner_margin_mm = 1e-3;
+    glm::vec3 low{0.0f}, high{0.0f};  // the box, world mm
+    std::array<std::uint32_t, capacity> roots{};
+    int count = 0;                        // 0: none gathered
+    const void* gathered_from = nullptr;  // the tree's nodes: another tree's queries ignore it
+
+    // Whether `point` lies in the box (less the margin).
+    bool covers(const glm::dvec3& point) const noexcept;
+  };
+  // Gathers the neighbourhood of the box [low, high], descending to subtrees no wider than
+  // `subtree_extent_mm` (smaller ones: more subtrees, each shallower). False, and an empty
+  // neighbourhood (that remembers its box), when the box meets nothing or would need more than
+  // Neighbourhood::capacity subtrees.
+  bool gather(Neighbourhood& near, glm::vec3 low, glm::vec3 high, float subtree_extent_mm) const noexcept;
+
+  // The first triangle the segment from -> to crosses (smallest t; the lowest BVH index among equal
+  // t), or no hit. Computed in double with a watertight edge test, so a segment through a shared edge
+  // or vertex of a closed mesh always hits one of its triangles. A front-face crossing counts when
+  // `from` is in front of the triangle's plane or at most `start_tolerance_mm` behind it (t is then 0),
+  // and `to` is on or behind the plane. Only the objects `seen` names count. Given a neighbourhood that
+  // covers `from`, the search starts from its subtrees for the part of the segment inside it: the same
+  // answer, sooner.
   BvhHit first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces = Faces::front,
-                   double start_tolerance_mm = 0.0, ObjectMask seen = {}) const noexcept;
+                   double start_tolerance_mm = 0.0, ObjectMask seen = {},
+                   const Neighbourhood* near = nullptr) const noexcept;
 
   // The closest point on any triangle of the `seen` objects to `point` no farther than
   // `max_distance_mm`, or no hit.

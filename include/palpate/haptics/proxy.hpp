@@ -61,6 +61,8 @@ struct ProxyState {
   int constraint_count = 0;
   bool placed = false;      // false until reset() or the first step, which puts the proxy at the HIP
   int last_iterations = 0;  // segments the last step cast (for statistics and tests)
+  // Where its casts start in the BVH while it rests on a surface (gathered as it moves; see Bvh::first_hit).
+  Bvh::Neighbourhood neighbourhood;
 
   bool in_contact() const noexcept { return constraint_count > 0; }
   // Puts the proxy at `position` with no constraints (e.g. at the first HIP).

@@ -1,0 +1,180 @@
+// Bvh::Neighbourhood: a segment cast that starts from the subtrees gathered around a box must give
+// the root's answer, bit for bit, for every segment: random ones from inside the box and adversarial
+// ones (through vertices and edges, along the surface a micrometre above it, from the box's faces and
+// corners, out of the box and through the object).
+#include <gtest/gtest.h>
+
+#include <glm/geometric.hpp>
+#include <random>
+
+#include "palpate/core/bvh.hpp"
+#include "palpate/core/shapes.hpp"
+
+namespace palpate {
+namespace {
+
+Scene bumpy_sphere_scene(std::size_t triangles) {
+  Scene scene;
+  scene.objects.push_back(
+      {"bumpy sphere", make_bumpy_sphere(50.0f, 1.5f, triangles), glm::mat4(1.0f), {}, {}});
+  return scene;
+}
+
+// Asserts that the cast from `from` to `to` gives the same answer with and without `near`; counts
+// the casts the neighbourhood answered from its subtrees.
+struct Comparison {
+  const Bvh& bvh;
+  const Bvh::Neighbourhood& near;
+  long compared = 0, hits = 0, started_near = 0;
+
+  void operator()(const glm::dvec3& from, const glm::dvec3& to) {
+    for (const Faces faces : {Faces::front, Faces::both}) {
+      const BvhHit root = bvh.first_hit(from, to, faces, 1e-6);
+      const BvhHit local = bvh.first_hit(from, to, faces, 1e-6, {}, &near);
+      ++compared;
+      hits += root.hit();
+      started_near += near.covers(from);
+      ASSERT_EQ(local.hit(), root.hit()) << "from " << from.x << ' ' << from.y << ' ' << from.z;
+      if (!root.hit()) continue;
+      ASSERT_EQ(local.primitive, root.primitive);
+      ASSERT_EQ(local.t, root.t);
+    }
+  }
+};
+
+TEST(BvhNeighbourhood, CastsFromItsSubtreesMatchTheRootsOverAMillionRandomAndAdversarialSegments) {
+  const Scene scene = bumpy_sphere_scene(60000);
+  const Mesh& mesh = scene.objects[0].mesh;
+  const Bvh bvh = Bvh::build(scene);
+  std::mt19937 rng(12);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), fraction(0.0, 1.0);
+  std::uniform_int_distribution<std::size_t> pick_vertex(0, mesh.positions_mm.size() - 1);
+  std::uniform_int_distribution<std::size_t> pick_triangle(0, mesh.triangle_count() - 1);
+  const auto random_vector = [&](double length) {
+    return length * glm::dvec3(unit(rng), unit(rng), unit(rng));
+  };
+
+  Bvh::Neighbourhood near;
+  Comparison compare{bvh, near};
+  int neighbourhoods = 0;
+  while (compare.compared < 1'000'000) {
+    // A box around a surface point, from a tenth of a triangle to many triangles wide, with subtrees
+    // from a fraction of its width to several widths.
+    const glm::dvec3 centre(mesh.positions_mm[pick_vertex(rng)]);
+    const float half = float(0.05 + 4.0 * fraction(rng) * fraction(rng));
+    const float extent = float(half * (0.25 + 4.0 * fraction(rng)));
+    if (!bvh.gather(near, glm::vec3(centre) - half, glm::vec3(centre) + half, extent)) continue;
+    ++neighbourhoods;
+    const glm::dvec3 low(near.low), high(near.high);
+    for (int k = 0; k < 60; ++k) {
+      const glm::dvec3 inside = low + (high - low) * glm::dvec3(0.5 + 0.5 * unit(rng), 0.5 + 0.5 * unit(rng),
+                                                                0.5 + 0.5 * unit(rng));
+      // Random: short and long, inward, outward, through the sphere.
+      compare(inside, inside + random_vector(0.2 * half));
+      compare(inside, inside + random_vector(3.0 * half));
+      compare(inside, -inside);
+      compare(inside, inside * 1.2);
+      // Through a vertex or an edge's midpoint near the centre, from above to below.
+      const std::size_t t = pick_triangle(rng);
+      const glm::dvec3 a(mesh.positions_mm[mesh.indices[3 * t]]),
+          b(mesh.positions_mm[mesh.indices[3 * t + 1]]);
+      for (const glm::dvec3& target : {a, 0.5 * (a + b)}) {
+        const glm::dvec3 out = glm::normalize(target);
+        compare(target + 0.01 * out + random_vector(0.002), target - 0.5 * out);
+        compare(target + 0.01 * out, target - 0.5 * out);  // exactly through it: ties between its faces
+      }
+      const glm::dvec3 v(mesh.positions_mm[pick_vertex(rng)]);
+      const glm::dvec3 out = glm::normalize(v);
+      compare(v + double(half) * out, v - double(half) * out);
+      // Along the surface, a micrometre above it, as the proxy walks.
+      const glm::dvec3 c(mesh.positions_mm[mesh.indices[3 * t + 2]]);
+      const glm::dvec3 normal = glm::normalize(glm::cross(b - a, c - a));
+      compare((a + b + c) / 3.0 + 1e-3 * normal, a + 1e-3 * normal + (a - c) * fraction(rng));
+      // From the box's faces and corners (at the edge of what the neighbourhood trusts) inward and out.
+      glm::dvec3 on_face = inside;
+      const int axis = int(rng() % 3);
+      on_face[axis] =
+          (rng() % 2 ? low : high)[axis] + (rng() % 2 ? 1.0 : -1.0) * Bvh::Neighbourhood::inner_margin_mm;
+      compare(on_face, centre);
+      compare(on_face, on_face + random_vector(half));
+      const glm::dvec3 corner(rng() % 2 ? low.x : high.x, rng() % 2 ? low.y : high.y,
+                              rng() % 2 ? low.z : high.z);
+      compare(corner, centre);
+      compare(centre, corner + random_vector(0.1 * half));
+      // Zero length.
+      compare(inside, inside);
+    }
+  }
+  EXPECT_GE(compare.compared, 1'000'000);
+  EXPECT_GT(neighbourhoods, 500);
+  // The sample really exercises hits and casts answered from the subtrees.
+  EXPECT_GT(compare.hits, compare.compared / 4);
+  EXPECT_GT(compare.started_near, compare.compared * 2 / 5);  // 46% measured
+}
+
+TEST(BvhNeighbourhood, GathersTheSubtreesThatHoldEveryTriangleMeetingTheBox) {
+  const Scene scene = bumpy_sphere_scene(20000);
+  const Bvh bvh = Bvh::build(scene);
+  const glm::vec3 low(-2.0f, -2.0f, 48.0f), high(2.0f, 2.0f, 53.0f);
+  Bvh::Neighbourhood near;
+  ASSERT_TRUE(bvh.gather(near, low, high, 6.0f));
+  EXPECT_GT(near.count, 1);
+  EXPECT_TRUE(near.covers(glm::dvec3(0.0, 0.0, 50.0)));
+  EXPECT_FALSE(near.covers(glm::dvec3(0.0, 0.0, 47.0)));
+  // Each triangle whose bounds meet the box lies under exactly one gathered subtree, none of which is
+  // wider than asked unless it is a leaf.
+  std::vector<int> under(bvh.triangle_count(), 0);
+  const auto& nodes = bvh.nodes();
+  for (int r = 0; r < near.count; ++r) {
+    const Bvh::Node& root = nodes[near.roots[std::size_t(r)]];
+    const glm::vec3 extent = root.max - root.min;
+    EXPECT_TRUE(root.count > 0 || std::max({extent.x, extent.y, extent.z}) <= 6.0f);
+    std::vector<std::uint32_t> todo{near.roots[std::size_t(r)]};
+    while (!todo.empty()) {
+      const Bvh::Node& node = nodes[todo.back()];
+      todo.pop_back();
+      if (node.count == 0) {
+        todo.push_back(node.first);
+        todo.push_back(node.first + 1);
+        continue;
+      }
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) ++under[i];
+    }
+  }
+  int meeting = 0;
+  for (std::uint32_t i = 0; i < bvh.triangle_count(); ++i) {
+    const auto& v = bvh.triangle(i).vertices;
+    const glm::vec3 tri_low = glm::min(glm::min(v[0], v[1]), v[2]),
+                    tri_high = glm::max(glm::max(v[0], v[1]), v[2]);
+    const bool meets =
+        glm::all(glm::lessThanEqual(tri_low, high)) && glm::all(glm::lessThanEqual(low, tri_high));
+    EXPECT_LE(under[i], 1);
+    if (meets) {
+      ++meeting;
+      EXPECT_EQ(under[i], 1) << "triangle " << i;
+    }
+  }
+  EXPECT_GT(meeting, 20);
+}
+
+TEST(BvhNeighbourhood, TooManySubtreesOrAnotherTreeFallBackToTheRoot) {
+  const Scene scene = bumpy_sphere_scene(20000);
+  const Bvh bvh = Bvh::build(scene);
+  Bvh::Neighbourhood near;
+  // The whole sphere in subtrees of a millimetre: far more than the capacity.
+  EXPECT_FALSE(bvh.gather(near, glm::vec3(-60.0f), glm::vec3(60.0f), 1.0f));
+  EXPECT_EQ(near.count, 0);
+  EXPECT_FALSE(near.covers(glm::dvec3(0.0)));
+  // Gathered in one tree, ignored by another (its node indices mean nothing there).
+  ASSERT_TRUE(bvh.gather(near, glm::vec3(-2.0f, -2.0f, 48.0f), glm::vec3(2.0f, 2.0f, 53.0f), 6.0f));
+  const Bvh other = Bvh::build(bumpy_sphere_scene(500));
+  const glm::dvec3 from(0.0, 0.0, 52.0), to(0.0, 0.0, 0.0);
+  const BvhHit expected = other.first_hit(from, to);
+  const BvhHit got = other.first_hit(from, to, Faces::front, 0.0, {}, &near);
+  ASSERT_TRUE(expected.hit());
+  EXPECT_EQ(got.primitive, expected.primitive);
+  EXPECT_EQ(got.t, expected.t);
+}
+
+}  // namespace
+}  // namespace palpate
