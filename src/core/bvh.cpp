@@ -327,7 +327,7 @@ BvhHit Bvh::closest_point_if(const glm::dvec3& point, double max_distance_mm,
 }
 
 BvhHit Bvh::closest_point_near(const glm::dvec3& point, const glm::dvec3& around, double radius_mm,
-                               ObjectMask seen) const noexcept {
+                               ObjectMask seen, const Neighbourhood* near) const noexcept {
   if (nodes_.empty() || !(radius_mm >= 0.0)) return {};
   const glm::vec3 centre(around);
   // Box distances are in float: compare against a slightly enlarged bound so rounding never prunes.
@@ -335,9 +335,16 @@ BvhHit Bvh::closest_point_near(const glm::dvec3& point, const glm::dvec3& around
   double best_d2 = std::numeric_limits<double>::infinity();
   glm::dvec3 best_point(0.0);
   std::uint32_t best = 0;
-  std::uint32_t stack[max_depth + 1];  // one sibling waits per level, plus the node popped next
+  // The ball inside the neighbourhood: its subtrees hold every triangle that can reach it.
+  const bool from_near = near != nullptr && near->gathered_from == nodes_.data() &&
+                         near->covers(around - radius_mm) && near->covers(around + radius_mm);
+  std::uint32_t stack[max_depth + Neighbourhood::capacity];  // one sibling waits per level
   std::size_t top = 0;
-  stack[top++] = 0;
+  if (from_near) {
+    for (int i = near->count - 1; i >= 0; --i) stack[top++] = near->roots[std::size_t(i)];
+  } else {
+    stack[top++] = 0;
+  }
   while (top > 0) {
     const Node& node = nodes_[stack[--top]];
     if (box_distance2(node, centre) > reach2) continue;
@@ -349,11 +356,16 @@ BvhHit Bvh::closest_point_near(const glm::dvec3& point, const glm::dvec3& around
     for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
       const Triangle& tri = triangles_[i];
       const glm::dvec3 a = vertex(tri, 0), b = vertex(tri, 1), c = vertex(tri, 2);
+      // Its bounds first (in double, exact): most of a leaf's triangles are out of reach.
+      const glm::dvec3 outside =
+          glm::max(glm::max(glm::min(glm::min(a, b), c) - around, around - glm::max(glm::max(a, b), c)), 0.0);
+      if (glm::dot(outside, outside) > radius_mm * radius_mm) continue;
       const glm::dvec3 touch = closest_point_on_triangle(around, a, b, c) - around;
       if (glm::dot(touch, touch) > radius_mm * radius_mm) continue;
       const glm::dvec3 q = closest_point_on_triangle(point, a, b, c);
       const double d2 = glm::dot(q - point, q - point);
-      if (d2 < best_d2 && primitive_seen(seen, i)) {
+      // Ties go to the lowest index, so the answer does not depend on where the search started.
+      if ((d2 < best_d2 || (d2 == best_d2 && i < best)) && primitive_seen(seen, i)) {
         best_d2 = d2;
         best_point = q;
         best = i;

@@ -202,7 +202,7 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   // cycle. False when there is no such face (a local minimum of its distance to the HIP).
   bool stepped_over_saddle = false;
   const auto step_onto_closer_face = [&]() {
-    const BvhHit closer = bvh.closest_point_near(hip, p, near_reach * epsilon, touchable);
+    const BvhHit closer = bvh.closest_point_near(hip, p, near_reach * epsilon, touchable, near);
     if (!closer.hit() || double(closer.distance_mm) >= glm::distance(p, hip) - 2.0 * epsilon ||
         std::any_of(c, c + count, [&](const Candidate& k) { return k.primitive == closer.primitive; })) {
       return false;

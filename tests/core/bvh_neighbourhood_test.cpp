@@ -112,6 +112,50 @@ TEST(BvhNeighbourhood, CastsFromItsSubtreesMatchTheRootsOverAMillionRandomAndAdv
   EXPECT_GT(compare.started_near, compare.compared * 2 / 5);  // 46% measured
 }
 
+TEST(BvhNeighbourhood, NearestPointsOfTheFacesAroundAPointMatchTheRoots) {
+  const Scene scene = bumpy_sphere_scene(60000);
+  const Mesh& mesh = scene.objects[0].mesh;
+  const Bvh bvh = Bvh::build(scene);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), fraction(0.0, 1.0);
+  std::uniform_int_distribution<std::size_t> pick_triangle(0, mesh.triangle_count() - 1);
+  Bvh::Neighbourhood near;
+  long compared = 0, found = 0, started_near = 0;
+  while (compared < 200'000) {
+    const std::size_t t = pick_triangle(rng);
+    const glm::dvec3 a(mesh.positions_mm[mesh.indices[3 * t]]), b(mesh.positions_mm[mesh.indices[3 * t + 1]]),
+        c(mesh.positions_mm[mesh.indices[3 * t + 2]]);
+    const float half = float(0.05 + 2.0 * fraction(rng));
+    if (!bvh.gather(near, glm::vec3(a) - half, glm::vec3(a) + half,
+                    float(half * (0.5 + 2.0 * fraction(rng)))))
+      continue;
+    const glm::dvec3 normal = glm::normalize(glm::cross(b - a, c - a));
+    for (int k = 0; k < 20; ++k) {
+      // Where the proxy rests: on a vertex, an edge or inside the face, a micrometre above it, and
+      // anywhere in the box; the tip under it or off to a side.
+      const double u = fraction(rng), v = fraction(rng) * (1.0 - u);
+      const glm::dvec3 around = k % 4 == 0   ? a + 1e-3 * normal
+                                : k % 4 == 1 ? a + u * (b - a) + 1e-3 * normal
+                                : k % 4 == 2 ? a + u * (b - a) + v * (c - a) + 1e-3 * normal
+                                             : a + double(half) * glm::dvec3(unit(rng), unit(rng), unit(rng));
+      const glm::dvec3 tip =
+          around - (0.5 + 2.0 * fraction(rng)) * normal + 0.5 * glm::dvec3(unit(rng), unit(rng), unit(rng));
+      const double radius = k % 2 ? 0.01 : 0.2 * double(half) * fraction(rng);
+      const BvhHit root = bvh.closest_point_near(tip, around, radius);
+      const BvhHit local = bvh.closest_point_near(tip, around, radius, {}, &near);
+      ++compared;
+      found += root.hit();
+      started_near += near.covers(around - radius) && near.covers(around + radius);
+      ASSERT_EQ(local.hit(), root.hit());
+      if (!root.hit()) continue;
+      ASSERT_EQ(local.primitive, root.primitive);
+      ASSERT_EQ(local.distance_mm, root.distance_mm);
+    }
+  }
+  EXPECT_GT(found, compared / 2);
+  EXPECT_GT(started_near, compared / 2);
+}
+
 TEST(BvhNeighbourhood, GathersTheSubtreesThatHoldEveryTriangleMeetingTheBox) {
   const Scene scene = bumpy_sphere_scene(20000);
   const Bvh bvh = Bvh::build(scene);

@@ -135,8 +135,10 @@ class Bvh {
   // Among the triangles of the `seen` objects that pass within `radius_mm` of `around`, the point
   // nearest `point`, or no hit: what a proxy resting at `around` could reach by sliding onto one of the
   // faces it touches.
+  // Given a neighbourhood that holds the ball, the search starts from its subtrees (the same answer:
+  // ties go to the lowest BVH index).
   BvhHit closest_point_near(const glm::dvec3& point, const glm::dvec3& around, double radius_mm,
-                            ObjectMask seen = {}) const noexcept;
+                            ObjectMask seen = {}, const Neighbourhood* near = nullptr) const noexcept;
 
   // Calls visit(primitive) for each triangle whose bounds meet the box [low, high] (world mm). No
   // allocation; for searches around a region rather than along a ray or from a point.
