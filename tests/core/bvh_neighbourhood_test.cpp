@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <glm/geometric.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 #include <random>
 
 #include "palpate/core/bvh.hpp"
@@ -211,13 +212,24 @@ TEST(BvhNeighbourhood, TooManySubtreesOrAnotherTreeFallBackToTheRoot) {
   EXPECT_FALSE(near.covers(glm::dvec3(0.0)));
   // Gathered in one tree, ignored by another (its node indices mean nothing there).
   ASSERT_TRUE(bvh.gather(near, glm::vec3(-2.0f, -2.0f, 48.0f), glm::vec3(2.0f, 2.0f, 53.0f), 6.0f));
-  const Bvh other = Bvh::build(bumpy_sphere_scene(500));
-  const glm::dvec3 from(0.0, 0.0, 52.0), to(0.0, 0.0, 0.0);
-  const BvhHit expected = other.first_hit(from, to);
-  const BvhHit got = other.first_hit(from, to, Faces::front, 0.0, {}, &near);
-  ASSERT_TRUE(expected.hit());
-  EXPECT_EQ(got.primitive, expected.primitive);
-  EXPECT_EQ(got.t, expected.t);
+  // A finer sphere turned on its side: a larger tree, where the node indices are valid but hold other
+  // parts of the surface. Segments inside the box, so no search from the root could mend it.
+  Scene turned = bumpy_sphere_scene(40000);
+  turned.objects[0].transform = glm::rotate(glm::mat4(1.0f), 1.5707964f, glm::vec3(1.0f, 0.0f, 0.0f));
+  const Bvh other = Bvh::build(turned);
+  ASSERT_GT(other.node_count(), bvh.node_count());
+  int hits = 0;
+  for (double x = -1.5; x <= 1.5; x += 0.25) {
+    const glm::dvec3 from(x, 0.3 * x, 52.5), to(x, 0.3 * x, 48.5);
+    const BvhHit expected = other.first_hit(from, to);
+    const BvhHit got = other.first_hit(from, to, Faces::front, 0.0, {}, &near);
+    hits += expected.hit();
+    ASSERT_EQ(got.hit(), expected.hit());
+    if (!expected.hit()) continue;
+    EXPECT_EQ(got.primitive, expected.primitive);
+    EXPECT_EQ(got.t, expected.t);
+  }
+  EXPECT_GT(hits, 8);
 }
 
 }  // namespace
