@@ -155,9 +155,7 @@ bool Bvh::gather(Neighbourhood& near, glm::vec3 low, glm::vec3 high, float subtr
   while (top > 0) {
     const std::uint32_t index = stack[--top];
     const Node& node = nodes_[index];
-    if (!(node.min.x <= high.x && low.x <= node.max.x && node.min.y <= high.y && low.y <= node.max.y &&
-          node.min.z <= high.z && low.z <= node.max.z))
-      continue;
+    if (!boxes_meet(node.min, node.max, low, high)) continue;
     const glm::vec3 extent = node.max - node.min;
     if (node.count > 0 || std::max(std::max(extent.x, extent.y), extent.z) <= subtree_extent_mm) {
       if (near.count == Neighbourhood::capacity) {
@@ -229,7 +227,7 @@ BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
   // From inside the neighbourhood, the part of the segment within it is searched from its subtrees
   // alone (they hold every triangle that part can meet); a hit there is the first hit. Otherwise, or
   // when that part is clear, from the root.
-  if (near != nullptr && near->gathered_from == nodes_.data() && near->covers(from)) {
+  if (near != nullptr && gathered_here(*near) && near->covers(from)) {
     const glm::dvec3 low = glm::dvec3(near->low) + Neighbourhood::inner_margin_mm,
                      high = glm::dvec3(near->high) - Neighbourhood::inner_margin_mm;
     double limit = 1.0;
@@ -336,8 +334,8 @@ BvhHit Bvh::closest_point_near(const glm::dvec3& point, const glm::dvec3& around
   glm::dvec3 best_point(0.0);
   std::uint32_t best = 0;
   // The ball inside the neighbourhood: its subtrees hold every triangle that can reach it.
-  const bool from_near = near != nullptr && near->gathered_from == nodes_.data() &&
-                         near->covers(around - radius_mm) && near->covers(around + radius_mm);
+  const bool from_near = near != nullptr && gathered_here(*near) && near->covers(around - radius_mm) &&
+                         near->covers(around + radius_mm);
   std::uint32_t stack[max_depth + Neighbourhood::capacity];  // one sibling waits per level
   std::size_t top = 0;
   if (from_near) {

@@ -131,9 +131,7 @@ void keep_neighbourhood(Bvh::Neighbourhood& near, const Bvh& bvh, std::uint32_t 
                         const glm::dvec3& p) noexcept {
   const glm::dvec3 half_width = 0.5 * (glm::dvec3(near.high) - glm::dvec3(near.low));
   const glm::dvec3 offset = glm::abs(p - 0.5 * (glm::dvec3(near.high) + glm::dvec3(near.low)));
-  if (near.gathered_from == static_cast<const void*>(bvh.nodes().data()) &&
-      glm::all(glm::lessThanEqual(offset, 0.5 * half_width)))
-    return;
+  if (bvh.gathered_here(near) && glm::all(glm::lessThanEqual(offset, 0.5 * half_width))) return;
   const Bvh::Triangle& tri = bvh.triangle(face);
   const float size = std::max({glm::distance(tri.vertices[0], tri.vertices[1]),
                                glm::distance(tri.vertices[1], tri.vertices[2]),

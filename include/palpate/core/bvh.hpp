@@ -111,6 +111,8 @@ class Bvh {
   // neighbourhood (that remembers its box), when the box meets nothing or would need more than
   // Neighbourhood::capacity subtrees.
   bool gather(Neighbourhood& near, glm::vec3 low, glm::vec3 high, float subtree_extent_mm) const noexcept;
+  // Whether `near` was gathered from this tree: another tree's node indices mean nothing here.
+  bool gathered_here(const Neighbourhood& near) const noexcept { return near.gathered_from == nodes_.data(); }
 
   // The first triangle the segment from -> to crosses (smallest t; the lowest BVH index among equal
   // t), or no hit. Computed in double with a watertight edge test, so a segment through a shared edge
@@ -145,10 +147,7 @@ class Bvh {
   template <class Visit>
   void for_each_in_box(glm::vec3 low, glm::vec3 high, Visit&& visit) const noexcept {
     if (nodes_.empty()) return;
-    const auto meets = [&](glm::vec3 min, glm::vec3 max) {
-      return min.x <= high.x && low.x <= max.x && min.y <= high.y && low.y <= max.y && min.z <= high.z &&
-             low.z <= max.z;
-    };
+    const auto meets = [&](glm::vec3 min, glm::vec3 max) { return boxes_meet(min, max, low, high); };
     std::uint32_t stack[max_depth];
     std::size_t top = 0;
     stack[top++] = 0;
@@ -185,6 +184,12 @@ class Bvh {
   const std::vector<Node>& nodes() const noexcept { return nodes_; }
 
  private:
+  // Whether the boxes [min, max] and [low, high] share a point (touching counts).
+  static bool boxes_meet(glm::vec3 min, glm::vec3 max, glm::vec3 low, glm::vec3 high) noexcept {
+    return min.x <= high.x && low.x <= max.x && min.y <= high.y && low.y <= max.y && min.z <= high.z &&
+           low.z <= max.z;
+  }
+
   struct ObjectRange {
     std::uint32_t first_id;  // scene-wide number of the object's first triangle
     int object;              // its index in the scene
