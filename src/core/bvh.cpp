@@ -143,32 +143,43 @@ bool Bvh::Neighbourhood::covers(const glm::dvec3& point) const noexcept {
          glm::all(glm::lessThanEqual(point, glm::dvec3(high) - inner_margin_mm));
 }
 
-bool Bvh::gather(Neighbourhood& near, glm::vec3 low, glm::vec3 high, float subtree_extent_mm) const noexcept {
+bool Bvh::gather(Neighbourhood& near, glm::vec3 low, glm::vec3 high) const noexcept {
   near.count = 0;
   near.low = low;
   near.high = high;
   near.gathered_from = nodes_.data();
-  if (nodes_.empty()) return false;
-  std::uint32_t stack[max_depth + 1];  // one sibling waits per level, plus the node popped next
+  if (nodes_.empty() || !boxes_meet(nodes_[0].min, nodes_[0].max, low, high)) return false;
+  // Both children are tested before either is entered (as in first_hit): the box meets one of them at
+  // most levels, and a node is then read only when it is entered.
+  std::uint32_t stack[max_depth];
   std::size_t top = 0;
-  stack[top++] = 0;
-  while (top > 0) {
-    const std::uint32_t index = stack[--top];
-    const Node& node = nodes_[index];
-    if (!boxes_meet(node.min, node.max, low, high)) continue;
-    const glm::vec3 extent = node.max - node.min;
-    if (node.count > 0 || std::max(std::max(extent.x, extent.y), extent.z) <= subtree_extent_mm) {
+  std::uint32_t current = 0;
+  for (;;) {
+    const Node& node = nodes_[current];
+    if (node.count > 0) {
       if (near.count == Neighbourhood::capacity) {
         near.count = 0;
         return false;
       }
-      near.roots[std::size_t(near.count++)] = index;
-      continue;
+      const auto k = std::size_t(near.count++);
+      near.leaves[k] = current;
+      for (int a = 0; a < 3; ++a) {
+        near.min[std::size_t(a)][k] = node.min[a];
+        near.max[std::size_t(a)][k] = node.max[a];
+      }
+    } else {
+      const bool left = boxes_meet(nodes_[node.first].min, nodes_[node.first].max, low, high);
+      const bool right = boxes_meet(nodes_[node.first + 1].min, nodes_[node.first + 1].max, low, high);
+      if (left || right) {
+        if (left && right) stack[top++] = node.first + 1;
+        current = left ? node.first : node.first + 1;
+        continue;
+      }
     }
-    stack[top++] = node.first + 1;
-    stack[top++] = node.first;
+    if (top == 0) break;
+    current = stack[--top];
   }
-  return near.count > 0;
+  return true;
 }
 
 BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces, double start_tolerance_mm,
@@ -184,14 +195,14 @@ BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
   }
   double best_t = 2.0;  // above any segment parameter
   std::uint32_t best = 0;
-  // Every subtree the segment enters before `limit` (and before the best hit so far), nearer child
-  // first; the farther waits on the stack and is re-culled against the best hit when popped. Ties in t
-  // go to the lowest index, so that any set of starting subtrees gives the root's answer.
-  const auto search = [&](const std::uint32_t* starts, int start_count, double limit) {
-    std::uint32_t stack[max_depth + Neighbourhood::capacity];
+  // Every subtree the segment enters before the best hit so far, nearer child first; the farther waits
+  // on the stack and is re-culled against the best hit when popped. Ties in t go to the lowest index,
+  // so that the answer does not depend on the order of the search.
+  const auto search_tree = [&] {
+    std::uint32_t stack[max_depth];
     std::size_t top = 0;
-    for (int i = start_count - 1; i >= 0; --i) stack[top++] = starts[i];
-    const auto reach = [&] { return float(std::min(best_t, limit)); };
+    stack[top++] = 0;
+    const auto reach = [&] { return float(std::min(best_t, 1.0)); };
     while (top > 0) {
       std::uint32_t current = stack[--top];
       if (entry(nodes_[current], origin, inverse, reach()) == no_entry) continue;
@@ -200,7 +211,7 @@ BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
         if (node.count > 0) {
           for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
             double t;
-            if (cross_triangle(triangles_[i], from, d, faces, start_tolerance_mm, t) && t <= limit &&
+            if (cross_triangle(triangles_[i], from, d, faces, start_tolerance_mm, t) &&
                 (t < best_t || (t == best_t && i < best)) && primitive_seen(seen, i)) {
               best_t = t;
               best = i;
@@ -224,7 +235,7 @@ BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
       }
     }
   };
-  // From inside the neighbourhood, the part of the segment within it is searched from its subtrees
+  // From inside the neighbourhood, the part of the segment within it is searched among its leaves
   // alone (they hold every triangle that part can meet); a hit there is the first hit. Otherwise, or
   // when that part is clear, from the root.
   if (near != nullptr && gathered_here(*near) && near->covers(from)) {
@@ -235,14 +246,37 @@ BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
       if (d[a] > 0.0) limit = std::min(limit, (high[a] - from[a]) / d[a]);
       if (d[a] < 0.0) limit = std::min(limit, (low[a] - from[a]) / d[a]);
     }
-    search(near->roots.data(), near->count, limit);
-    if (best_t > 1.0 && limit < 1.0) {
-      const std::uint32_t root = 0;
-      search(&root, 1, 1.0);
+    // The slab tests of all the leaves first, with no branch between them, then the triangles of the
+    // few whose bounds the segment enters.
+    const auto& min = near->min;
+    const auto& max = near->max;
+    const float reach = float(limit);
+    bool entered[Neighbourhood::capacity];
+    for (std::size_t k = 0; k < std::size_t(near->count); ++k) {
+      const float x1 = (min[0][k] - origin.x) * inverse.x, x2 = (max[0][k] - origin.x) * inverse.x;
+      const float y1 = (min[1][k] - origin.y) * inverse.y, y2 = (max[1][k] - origin.y) * inverse.y;
+      const float z1 = (min[2][k] - origin.z) * inverse.z, z2 = (max[2][k] - origin.z) * inverse.z;
+      const float t_in =
+          std::max(std::max(std::min(x1, x2), std::min(y1, y2)), std::max(std::min(z1, z2), 0.0f));
+      const float t_out =
+          std::min(std::min(std::max(x1, x2), std::max(y1, y2)), std::min(std::max(z1, z2), reach));
+      entered[k] = t_in <= t_out;
     }
+    for (std::size_t k = 0; k < std::size_t(near->count); ++k) {
+      if (!entered[k]) continue;
+      const Node& leaf = nodes_[near->leaves[k]];
+      for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
+        double t;
+        if (cross_triangle(triangles_[i], from, d, faces, start_tolerance_mm, t) && t <= limit &&
+            (t < best_t || (t == best_t && i < best)) && primitive_seen(seen, i)) {
+          best_t = t;
+          best = i;
+        }
+      }
+    }
+    if (best_t > 1.0 && limit < 1.0) search_tree();
   } else {
-    const std::uint32_t root = 0;
-    search(&root, 1, 1.0);
+    search_tree();
   }
   if (best_t > 1.0) return {};
   BvhHit hit = make_hit(best, from + d * best_t);
@@ -333,41 +367,45 @@ BvhHit Bvh::closest_point_near(const glm::dvec3& point, const glm::dvec3& around
   double best_d2 = std::numeric_limits<double>::infinity();
   glm::dvec3 best_point(0.0);
   std::uint32_t best = 0;
-  // The ball inside the neighbourhood: its subtrees hold every triangle that can reach it.
-  const bool from_near = near != nullptr && gathered_here(*near) && near->covers(around - radius_mm) &&
-                         near->covers(around + radius_mm);
-  std::uint32_t stack[max_depth + Neighbourhood::capacity];  // one sibling waits per level
-  std::size_t top = 0;
-  if (from_near) {
-    for (int i = near->count - 1; i >= 0; --i) stack[top++] = near->roots[std::size_t(i)];
-  } else {
-    stack[top++] = 0;
-  }
-  while (top > 0) {
-    const Node& node = nodes_[stack[--top]];
-    if (box_distance2(node, centre) > reach2) continue;
-    if (node.count == 0) {
-      stack[top++] = node.first;
-      stack[top++] = node.first + 1;
-      continue;
+  const auto consider = [&](std::uint32_t i) {
+    const Triangle& tri = triangles_[i];
+    const glm::dvec3 a = vertex(tri, 0), b = vertex(tri, 1), c = vertex(tri, 2);
+    // Its bounds first (in double, exact): most of a leaf's triangles are out of reach.
+    const glm::dvec3 outside =
+        glm::max(glm::max(glm::min(glm::min(a, b), c) - around, around - glm::max(glm::max(a, b), c)), 0.0);
+    if (glm::dot(outside, outside) > radius_mm * radius_mm) return;
+    const glm::dvec3 touch = closest_point_on_triangle(around, a, b, c) - around;
+    if (glm::dot(touch, touch) > radius_mm * radius_mm) return;
+    const glm::dvec3 q = closest_point_on_triangle(point, a, b, c);
+    const double d2 = glm::dot(q - point, q - point);
+    // Ties go to the lowest index, so the answer does not depend on the order of the search.
+    if ((d2 < best_d2 || (d2 == best_d2 && i < best)) && primitive_seen(seen, i)) {
+      best_d2 = d2;
+      best_point = q;
+      best = i;
     }
-    for (std::uint32_t i = node.first; i < node.first + node.count; ++i) {
-      const Triangle& tri = triangles_[i];
-      const glm::dvec3 a = vertex(tri, 0), b = vertex(tri, 1), c = vertex(tri, 2);
-      // Its bounds first (in double, exact): most of a leaf's triangles are out of reach.
-      const glm::dvec3 outside =
-          glm::max(glm::max(glm::min(glm::min(a, b), c) - around, around - glm::max(glm::max(a, b), c)), 0.0);
-      if (glm::dot(outside, outside) > radius_mm * radius_mm) continue;
-      const glm::dvec3 touch = closest_point_on_triangle(around, a, b, c) - around;
-      if (glm::dot(touch, touch) > radius_mm * radius_mm) continue;
-      const glm::dvec3 q = closest_point_on_triangle(point, a, b, c);
-      const double d2 = glm::dot(q - point, q - point);
-      // Ties go to the lowest index, so the answer does not depend on where the search started.
-      if ((d2 < best_d2 || (d2 == best_d2 && i < best)) && primitive_seen(seen, i)) {
-        best_d2 = d2;
-        best_point = q;
-        best = i;
+  };
+  // The ball inside the neighbourhood: its leaves hold every triangle that can reach it.
+  if (near != nullptr && gathered_here(*near) && near->covers(around - radius_mm) &&
+      near->covers(around + radius_mm)) {
+    for (std::size_t k = 0; k < std::size_t(near->count); ++k) {
+      const Node& leaf = nodes_[near->leaves[k]];
+      if (box_distance2(leaf, centre) > reach2) continue;
+      for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) consider(i);
+    }
+  } else {
+    std::uint32_t stack[max_depth + 1];  // one sibling waits per level, plus the node popped next
+    std::size_t top = 0;
+    stack[top++] = 0;
+    while (top > 0) {
+      const Node& node = nodes_[stack[--top]];
+      if (box_distance2(node, centre) > reach2) continue;
+      if (node.count == 0) {
+        stack[top++] = node.first;
+        stack[top++] = node.first + 1;
+        continue;
       }
+      for (std::uint32_t i = node.first; i < node.first + node.count; ++i) consider(i);
     }
   }
   if (!std::isfinite(best_d2)) return {};

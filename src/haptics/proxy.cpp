@@ -119,11 +119,10 @@ bool supported(const Bvh& bvh, const Candidate* c, int count, const glm::dvec3& 
   return true;
 }
 
-// The proxy's neighbourhood in the BVH: a box 1.2 of its face's sizes either side (1.2 and 2 measured
-// alike; at least 0.4 mm was slower at 1 M triangles), gathered again once the proxy has moved half
-// that far (every few ticks on sphere-slide, about 1 µs each time).
-// Its casts then start from a few subtrees instead of the root, skipping most of the tree's dependent
-// box tests (docs/design.md, "The haptic tick's memory and time").
+// The proxy's neighbourhood in the BVH: a box 1.2 of its face's sizes either side, gathered again once
+// the proxy has moved half that far (every few ticks on sphere-slide, about 0.5 µs each time). Its
+// casts then test the 12-24 leaves listed there side by side instead of walking the tree's chain of
+// dependent box tests (docs/design.md, "The haptic tick's memory and time").
 constexpr double neighbourhood_faces = 1.2;
 constexpr double min_neighbourhood_mm = 0.05;
 
@@ -137,7 +136,7 @@ void keep_neighbourhood(Bvh::Neighbourhood& near, const Bvh& bvh, std::uint32_t 
                                glm::distance(tri.vertices[1], tri.vertices[2]),
                                glm::distance(tri.vertices[2], tri.vertices[0])});
   const float half = std::max(float(neighbourhood_faces) * size, float(min_neighbourhood_mm));
-  bvh.gather(near, glm::vec3(p) - half, glm::vec3(p) + half, 2.0f * half);
+  bvh.gather(near, glm::vec3(p) - half, glm::vec3(p) + half);
 }
 
 }  // namespace

@@ -91,26 +91,28 @@ class Bvh {
   // The padded bounds of everything; zero for an empty tree.
   Bounds bounds() const noexcept;
 
-  // The subtrees that hold every triangle whose bounds meet a box: where a query that stays in the box
-  // can start instead of at the root, skipping the top of the tree (the haptic proxy keeps one around
-  // itself and gathers it again only when it nears the edge). Fixed size, no allocation.
+  // The leaves whose bounds meet a box, listed flat with their bounds: where a query that stays in the
+  // box looks instead of walking the tree from the root (the haptic proxy keeps one around itself and
+  // gathers it again only when it nears the edge). A cast then tests a few dozen boxes side by side
+  // instead of a chain of 18 dependent ones. Fixed size, no allocation.
   struct Neighbourhood {
-    static constexpr int capacity = 32;
+    static constexpr int capacity = 48;
     // Queries trust it only this far inside the box, so that rounding at its faces never matters.
     static constexpr double inner_margin_mm = 1e-3;
-    glm::vec3 low{0.0f}, high{0.0f};  // the box, world mm
-    std::array<std::uint32_t, capacity> roots{};
-    int count = 0;                        // 0: none gathered
-    const void* gathered_from = nullptr;  // the tree's nodes: another tree's queries ignore it
+    glm::vec3 low{0.0f}, high{0.0f};               // the box, world mm
+    int count = 0;                                 // 0: none gathered
+    const void* gathered_from = nullptr;           // the tree's nodes: another tree's queries ignore it
+    std::array<std::uint32_t, capacity> leaves{};  // node indices
+    // Their bounds, one array per coordinate, so that the slab tests of neighbouring leaves run side
+    // by side.
+    std::array<std::array<float, capacity>, 3> min{}, max{};
 
     // Whether `point` lies in the box (less the margin).
     bool covers(const glm::dvec3& point) const noexcept;
   };
-  // Gathers the neighbourhood of the box [low, high], descending to subtrees no wider than
-  // `subtree_extent_mm` (smaller ones: more subtrees, each shallower). False, and an empty
-  // neighbourhood (that remembers its box), when the box meets nothing or would need more than
-  // Neighbourhood::capacity subtrees.
-  bool gather(Neighbourhood& near, glm::vec3 low, glm::vec3 high, float subtree_extent_mm) const noexcept;
+  // Gathers the neighbourhood of the box [low, high]. False, and an empty neighbourhood (that
+  // remembers its box), when the box meets no leaf or more than Neighbourhood::capacity.
+  bool gather(Neighbourhood& near, glm::vec3 low, glm::vec3 high) const noexcept;
   // Whether `near` was gathered from this tree: another tree's node indices mean nothing here.
   bool gathered_here(const Neighbourhood& near) const noexcept { return near.gathered_from == nodes_.data(); }
 
@@ -119,8 +121,8 @@ class Bvh {
   // or vertex of a closed mesh always hits one of its triangles. A front-face crossing counts when
   // `from` is in front of the triangle's plane or at most `start_tolerance_mm` behind it (t is then 0),
   // and `to` is on or behind the plane. Only the objects `seen` names count. Given a neighbourhood that
-  // covers `from`, the search starts from its subtrees for the part of the segment inside it: the same
-  // answer, sooner.
+  // covers `from`, the part of the segment inside it is searched among its leaves: the same answer,
+  // sooner.
   BvhHit first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces = Faces::front,
                    double start_tolerance_mm = 0.0, ObjectMask seen = {},
                    const Neighbourhood* near = nullptr) const noexcept;
@@ -137,8 +139,8 @@ class Bvh {
   // Among the triangles of the `seen` objects that pass within `radius_mm` of `around`, the point
   // nearest `point`, or no hit: what a proxy resting at `around` could reach by sliding onto one of the
   // faces it touches.
-  // Given a neighbourhood that holds the ball, the search starts from its subtrees (the same answer:
-  // ties go to the lowest BVH index).
+  // Given a neighbourhood that holds the ball, only its leaves are searched (the same answer: ties go
+  // to the lowest BVH index).
   BvhHit closest_point_near(const glm::dvec3& point, const glm::dvec3& around, double radius_mm,
                             ObjectMask seen = {}, const Neighbourhood* near = nullptr) const noexcept;
 
