@@ -262,19 +262,22 @@ BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
           std::min(std::min(std::max(x1, x2), std::max(y1, y2)), std::min(std::max(z1, z2), reach));
       entered[k] = t_in <= t_out;
     }
+    // The leaves are listed in index order, so the first of equal t found is the lowest index.
     for (std::size_t k = 0; k < std::size_t(near->count); ++k) {
       if (!entered[k]) continue;
       const Node& leaf = nodes_[near->leaves[k]];
       for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
         double t;
-        if (cross_triangle(triangles_[i], from, d, faces, start_tolerance_mm, t) && t <= limit &&
-            (t < best_t || (t == best_t && i < best)) && primitive_seen(seen, i)) {
+        if (cross_triangle(triangles_[i], from, d, faces, start_tolerance_mm, t) && t < best_t &&
+            primitive_seen(seen, i)) {
           best_t = t;
           best = i;
         }
       }
     }
-    if (best_t > 1.0 && limit < 1.0) search_tree();
+    // A hit past the box, or none, leaves the rest of the segment to search from the root (up to that
+    // hit): a triangle that is not listed may come first out there.
+    if (best_t > limit && limit < 1.0) search_tree();
   } else {
     search_tree();
   }

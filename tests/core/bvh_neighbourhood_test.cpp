@@ -163,13 +163,15 @@ TEST(BvhNeighbourhood, GathersEveryLeafThatMeetsTheBoxWithItsBounds) {
   EXPECT_TRUE(near.covers(glm::dvec3(0.0, 0.0, 50.0)));
   EXPECT_FALSE(near.covers(glm::dvec3(0.0, 0.0, 47.0)));
   // The leaves listed are exactly those whose bounds meet the box, each once, with its bounds: so each
-  // triangle whose bounds meet the box is in one of them.
+  // triangle whose bounds meet the box is in one of them. They come in the order of their triangles
+  // (casts rely on it to break ties between them by the lowest index).
   const auto& nodes = bvh.nodes();
   std::vector<int> listed(nodes.size(), 0);
   for (std::size_t k = 0; k < std::size_t(near.count); ++k) {
     const Bvh::Node& leaf = nodes[near.leaves[k]];
     ++listed[near.leaves[k]];
     EXPECT_GT(leaf.count, 0u);
+    if (k > 0) EXPECT_GT(leaf.first, nodes[near.leaves[k - 1]].first);
     for (std::size_t a = 0; a < 3; ++a) {
       EXPECT_EQ(near.min[a][k], leaf.min[int(a)]);
       EXPECT_EQ(near.max[a][k], leaf.max[int(a)]);
@@ -185,6 +187,39 @@ TEST(BvhNeighbourhood, GathersEveryLeafThatMeetsTheBoxWithItsBounds) {
     EXPECT_EQ(listed[n], meets ? 1 : 0) << "leaf " << n;
   }
   EXPECT_GT(meeting, 5);
+}
+
+TEST(BvhNeighbourhood, AHitPastTheBoxGivesWayToAnEarlierTriangleThatIsNotListed) {
+  // The segment leaves the box [-1, 1]^3 along x. A long triangle whose bounds reach into the box
+  // (listed) crosses it at x = 2.1; a cluster of small ones at x = 1.5, whose leaf stays outside the box
+  // (not listed), crosses it first.
+  Mesh mesh;
+  mesh.positions_mm = {{0.5f, 0.0f, 0.9f}, {3.0f, -0.5f, -0.5f}, {3.0f, 0.5f, -0.5f}};
+  for (int k = 0; k < 4; ++k) {
+    const float x = 1.5f + 0.01f * float(k);
+    const auto first = std::uint32_t(mesh.positions_mm.size());
+    mesh.positions_mm.insert(mesh.positions_mm.end(), {{x, -0.1f, -0.1f}, {x, 0.1f, -0.1f}, {x, 0.0f, 0.1f}});
+    mesh.indices.insert(mesh.indices.end(), {first, first + 2, first + 1});  // facing -x: met from the front
+  }
+  mesh.indices.insert(mesh.indices.end(), {0, 2, 1});
+  Scene scene;
+  scene.objects.push_back({"comb", std::move(mesh), glm::mat4(1.0f), {}, {}});
+  const Bvh bvh = Bvh::build(scene);
+  Bvh::Neighbourhood near;
+  ASSERT_TRUE(bvh.gather(near, glm::vec3(-1.0f), glm::vec3(1.0f)));
+  ASSERT_EQ(near.count, 1);
+  const Bvh::Node& listed = bvh.nodes()[near.leaves[0]];
+  ASSERT_EQ(listed.count, 1u);
+  ASSERT_EQ(bvh.locate(listed.first).triangle, 4) << "the long triangle alone is listed";
+  for (const Faces faces : {Faces::front, Faces::both}) {
+    const BvhHit root = bvh.first_hit(glm::dvec3(0.0), glm::dvec3(4.0, 0.0, 0.0), faces);
+    const BvhHit local = bvh.first_hit(glm::dvec3(0.0), glm::dvec3(4.0, 0.0, 0.0), faces, 0.0, {}, &near);
+    ASSERT_TRUE(root.hit());
+    EXPECT_EQ(root.triangle, 0);
+    EXPECT_NEAR(root.point_mm.x, 1.5f, 1e-6f);
+    EXPECT_EQ(local.primitive, root.primitive);
+    EXPECT_EQ(local.t, root.t);
+  }
 }
 
 TEST(BvhNeighbourhood, TooManyLeavesOrAnotherTreeFallBackToTheRoot) {
