@@ -64,7 +64,7 @@ glm::dvec3 vertex(const Bvh::Triangle& tri, int k) noexcept {
   return true;
 }
 
-float box_distance2(const Bvh::Node& node, const glm::vec3& p) noexcept {
+[[gnu::always_inline]] inline float box_distance2(const Bvh::Node& node, const glm::vec3& p) noexcept {
   const glm::vec3 outside = glm::max(glm::max(node.min - p, p - node.max), glm::vec3(0.0f));
   return glm::dot(outside, outside);
 }
@@ -162,7 +162,8 @@ bool Bvh::gather(Neighbourhood& near, glm::vec3 low, glm::vec3 high) const noexc
         return false;
       }
       const auto k = std::size_t(near.count++);
-      near.leaves[k] = current;
+      near.first[k] = node.first;
+      near.size[k] = node.count;
       for (int a = 0; a < 3; ++a) {
         near.min[std::size_t(a)][k] = node.min[a];
         near.max[std::size_t(a)][k] = node.max[a];
@@ -265,8 +266,7 @@ BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
     // The leaves are listed in index order, so the first of equal t found is the lowest index.
     for (std::size_t k = 0; k < std::size_t(near->count); ++k) {
       if (!entered[k]) continue;
-      const Node& leaf = nodes_[near->leaves[k]];
-      for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) {
+      for (std::uint32_t i = near->first[k]; i < near->first[k] + near->size[k]; ++i) {
         double t;
         if (cross_triangle(triangles_[i], from, d, faces, start_tolerance_mm, t) && t < best_t &&
             primitive_seen(seen, i)) {
@@ -391,10 +391,19 @@ BvhHit Bvh::closest_point_near(const glm::dvec3& point, const glm::dvec3& around
   // The ball inside the neighbourhood: its leaves hold every triangle that can reach it.
   if (near != nullptr && gathered_here(*near) && near->covers(around - radius_mm) &&
       near->covers(around + radius_mm)) {
+    // The leaves' distances first, with no branch between them, then the triangles of the few in reach.
+    const auto& min = near->min;
+    const auto& max = near->max;
+    bool in_reach[Neighbourhood::capacity];
     for (std::size_t k = 0; k < std::size_t(near->count); ++k) {
-      const Node& leaf = nodes_[near->leaves[k]];
-      if (box_distance2(leaf, centre) > reach2) continue;
-      for (std::uint32_t i = leaf.first; i < leaf.first + leaf.count; ++i) consider(i);
+      const float x = std::max(std::max(min[0][k] - centre.x, centre.x - max[0][k]), 0.0f);
+      const float y = std::max(std::max(min[1][k] - centre.y, centre.y - max[1][k]), 0.0f);
+      const float z = std::max(std::max(min[2][k] - centre.z, centre.z - max[2][k]), 0.0f);
+      in_reach[k] = x * x + y * y + z * z <= reach2;
+    }
+    for (std::size_t k = 0; k < std::size_t(near->count); ++k) {
+      if (!in_reach[k]) continue;
+      for (std::uint32_t i = near->first[k]; i < near->first[k] + near->size[k]; ++i) consider(i);
     }
   } else {
     std::uint32_t stack[max_depth + 1];  // one sibling waits per level, plus the node popped next

@@ -166,12 +166,19 @@ TEST(BvhNeighbourhood, GathersEveryLeafThatMeetsTheBoxWithItsBounds) {
   // triangle whose bounds meet the box is in one of them. They come in the order of their triangles
   // (casts rely on it to break ties between them by the lowest index).
   const auto& nodes = bvh.nodes();
+  std::vector<int> leaf_of(bvh.triangle_count(), -1);  // the leaf that holds each triangle first
+  for (std::size_t n = 0; n < nodes.size(); ++n) {
+    if (nodes[n].count > 0) leaf_of[nodes[n].first] = int(n);
+  }
   std::vector<int> listed(nodes.size(), 0);
   for (std::size_t k = 0; k < std::size_t(near.count); ++k) {
-    const Bvh::Node& leaf = nodes[near.leaves[k]];
-    ++listed[near.leaves[k]];
-    EXPECT_GT(leaf.count, 0u);
-    if (k > 0) EXPECT_GT(leaf.first, nodes[near.leaves[k - 1]].first);
+    ASSERT_LT(near.first[k], bvh.triangle_count());
+    const int n = leaf_of[near.first[k]];
+    ASSERT_GE(n, 0) << "listed " << k << " is no leaf's first triangle";
+    const Bvh::Node& leaf = nodes[std::size_t(n)];
+    ++listed[std::size_t(n)];
+    EXPECT_EQ(near.size[k], leaf.count);
+    if (k > 0) EXPECT_GT(near.first[k], near.first[k - 1]);
     for (std::size_t a = 0; a < 3; ++a) {
       EXPECT_EQ(near.min[a][k], leaf.min[int(a)]);
       EXPECT_EQ(near.max[a][k], leaf.max[int(a)]);
@@ -208,9 +215,8 @@ TEST(BvhNeighbourhood, AHitPastTheBoxGivesWayToAnEarlierTriangleThatIsNotListed)
   Bvh::Neighbourhood near;
   ASSERT_TRUE(bvh.gather(near, glm::vec3(-1.0f), glm::vec3(1.0f)));
   ASSERT_EQ(near.count, 1);
-  const Bvh::Node& listed = bvh.nodes()[near.leaves[0]];
-  ASSERT_EQ(listed.count, 1u);
-  ASSERT_EQ(bvh.locate(listed.first).triangle, 4) << "the long triangle alone is listed";
+  ASSERT_EQ(near.size[0], 1u);
+  ASSERT_EQ(bvh.locate(near.first[0]).triangle, 4) << "the long triangle alone is listed";
   for (const Faces faces : {Faces::front, Faces::both}) {
     const BvhHit root = bvh.first_hit(glm::dvec3(0.0), glm::dvec3(4.0, 0.0, 0.0), faces);
     const BvhHit local = bvh.first_hit(glm::dvec3(0.0), glm::dvec3(4.0, 0.0, 0.0), faces, 0.0, {}, &near);

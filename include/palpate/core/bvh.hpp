@@ -99,12 +99,13 @@ class Bvh {
     static constexpr int capacity = 48;
     // Queries trust it only this far inside the box, so that rounding at its faces never matters.
     static constexpr double inner_margin_mm = 1e-3;
-    glm::vec3 low{0.0f}, high{0.0f};               // the box, world mm
-    int count = 0;                                 // 0: none gathered
-    const void* gathered_from = nullptr;           // the tree's nodes: another tree's queries ignore it
-    std::array<std::uint32_t, capacity> leaves{};  // node indices
-    // Their bounds, one array per coordinate, so that the slab tests of neighbouring leaves run side
-    // by side.
+    glm::vec3 low{0.0f}, high{0.0f};      // the box, world mm
+    int count = 0;                        // 0: none gathered
+    const void* gathered_from = nullptr;  // the tree's nodes: another tree's queries ignore it
+    // Leaf k holds the triangles first[k] to first[k] + size[k] - 1 (a copy: no node is read again).
+    std::array<std::uint32_t, capacity> first{}, size{};
+    // The leaves' bounds, one array per coordinate, so that the tests of neighbouring leaves run side by
+    // side.
     std::array<std::array<float, capacity>, 3> min{}, max{};
 
     // Whether `point` lies in the box (less the margin).
