@@ -93,7 +93,7 @@ class Bvh {
 
   // The leaves whose bounds meet a box, listed flat with their bounds: where a query that stays in the
   // box looks instead of walking the tree from the root (the haptic proxy keeps one around itself and
-  // gathers it again only when it nears the edge). A cast then tests a few dozen boxes side by side
+  // gathers it again only when it nears the edge). A cast then tests a dozen or so boxes side by side
   // instead of a chain of 18 dependent ones. Fixed size, no allocation.
   struct Neighbourhood {
     static constexpr int capacity = 48;
