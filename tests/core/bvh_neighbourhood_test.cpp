@@ -178,7 +178,9 @@ TEST(BvhNeighbourhood, GathersEveryLeafThatMeetsTheBoxWithItsBounds) {
     const Bvh::Node& leaf = nodes[std::size_t(n)];
     ++listed[std::size_t(n)];
     EXPECT_EQ(near.size[k], leaf.count);
-    if (k > 0) EXPECT_GT(near.first[k], near.first[k - 1]);
+    if (k > 0) {
+      EXPECT_GT(near.first[k], near.first[k - 1]);
+    }
     for (std::size_t a = 0; a < 3; ++a) {
       EXPECT_EQ(near.min[a][k], leaf.min[int(a)]);
       EXPECT_EQ(near.max[a][k], leaf.max[int(a)]);
