@@ -180,7 +180,7 @@ bool Bvh::gather(Neighbourhood& near, glm::vec3 low, glm::vec3 high) const noexc
     if (top == 0) break;
     current = stack[--top];
   }
-  return true;
+  return near.count > 0;
 }
 
 BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces, double start_tolerance_mm,

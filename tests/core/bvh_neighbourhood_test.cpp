@@ -238,6 +238,10 @@ TEST(BvhNeighbourhood, TooManyLeavesOrAnotherTreeFallBackToTheRoot) {
   EXPECT_FALSE(bvh.gather(near, glm::vec3(-60.0f), glm::vec3(60.0f)));
   EXPECT_EQ(near.count, 0);
   EXPECT_FALSE(near.covers(glm::dvec3(0.0)));
+  // The hollow middle of the sphere: inside the root's bounds, but no leaf's.
+  EXPECT_FALSE(bvh.gather(near, glm::vec3(-1.0f), glm::vec3(1.0f)));
+  EXPECT_EQ(near.count, 0);
+  EXPECT_FALSE(near.covers(glm::dvec3(0.0)));
   // Gathered in one tree, ignored by another (its node indices mean nothing there).
   ASSERT_TRUE(bvh.gather(near, glm::vec3(-2.0f, -2.0f, 48.0f), glm::vec3(2.0f, 2.0f, 53.0f)));
   // A finer sphere turned on its side: a larger tree, where the node indices are valid but hold other
