@@ -97,12 +97,12 @@ glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, c
 
 std::size_t Bvh::memory_bytes() const noexcept {
   return nodes_.capacity() * sizeof(Node) + triangles_.capacity() * sizeof(Triangle) +
-         objects_.capacity() * sizeof(ObjectRange);
+         neighbours_.capacity() * sizeof(neighbours_[0]) + objects_.capacity() * sizeof(ObjectRange);
 }
 
-std::array<std::span<const std::byte>, 3> Bvh::memory() const noexcept {
+std::array<std::span<const std::byte>, 4> Bvh::memory() const noexcept {
   return {std::as_bytes(std::span(nodes_)), std::as_bytes(std::span(triangles_)),
-          std::as_bytes(std::span(objects_))};
+          std::as_bytes(std::span(neighbours_)), std::as_bytes(std::span(objects_))};
 }
 
 Bounds Bvh::bounds() const noexcept {

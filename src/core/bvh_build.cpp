@@ -202,6 +202,41 @@ std::uint32_t split_at_median(Reference* refs, std::uint32_t count, const Box& c
   return half;
 }
 
+// The triangle across each edge of each triangle (see Bvh::neighbour), given their corners' vertices
+// by scene-wide id, into `across` by BVH index: through a table of the triangles around each vertex,
+// in linear time and in the mesh's order, where neighbours are near in memory.
+void find_neighbours(const std::vector<std::uint32_t>& corners, std::size_t vertex_count,
+                     const std::vector<std::uint32_t>& primitive_of,
+                     std::vector<std::array<std::uint32_t, 3>>& across) {
+  // start[v] counts the uses of vertices up to v, then, filled backwards, where v's list begins.
+  std::vector<std::uint32_t> start(vertex_count + 1, 0);
+  for (const std::uint32_t v : corners) ++start[v];
+  for (std::size_t v = 1; v <= vertex_count; ++v) start[v] += start[v - 1];
+  std::vector<std::uint32_t> around(corners.size());  // the triangles using each vertex
+  for (std::size_t k = 0; k < corners.size(); ++k) around[--start[corners[k]]] = std::uint32_t(k / 3);
+
+  across.resize(primitive_of.size());
+  for (std::size_t t = 0; t < primitive_of.size(); ++t) {
+    for (std::size_t e = 0; e < 3; ++e) {
+      const std::uint32_t a = corners[3 * t + e], b = corners[3 * t + (e + 1) % 3];
+      std::uint32_t found = Bvh::no_neighbour;
+      int sharing = 0;  // other triangles that use both a and b
+      for (std::uint32_t k = start[a]; k < start[a + 1] && a != b; ++k) {
+        const std::uint32_t u = around[k];
+        if (u == t) continue;
+        const std::uint32_t* v = &corners[3 * std::size_t(u)];
+        for (std::size_t m = 0; m < 3; ++m) {
+          if (v[m] != b) continue;
+          ++sharing;
+          if (v[(m + 1) % 3] == a) found = u;
+        }
+      }
+      across[primitive_of[t]][e] =
+          sharing == 1 && found != Bvh::no_neighbour ? primitive_of[found] : Bvh::no_neighbour;
+    }
+  }
+}
+
 }  // namespace
 
 Bvh Bvh::build(const Scene& scene) {
@@ -308,11 +343,14 @@ Bvh Bvh::build(const Scene& scene, ObjectMask included) {
   bvh.nodes_.shrink_to_fit();
 
   bvh.triangles_.resize(refs.size());
+  std::vector<std::uint32_t> primitive_of(refs.size());  // by scene-wide id
   for (std::size_t i = 0; i < refs.size(); ++i) {
     const std::uint32_t id = refs[i].id();
     bvh.triangles_[i] = {{world[corners[3 * id]], world[corners[3 * id + 1]], world[corners[3 * id + 2]]},
                          id};
+    primitive_of[id] = std::uint32_t(i);
   }
+  find_neighbours(corners, world.size(), primitive_of, bvh.neighbours_);
   return bvh;
 }
 

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <map>
 #include <random>
 #include <vector>
 
@@ -252,6 +253,71 @@ TEST(Bvh, AppliesTransformsSkipsUntouchableObjectsAndNamesTheObject) {
   // From inside the left box, only its back faces are in the way: front-only passes, both-sided hits.
   EXPECT_FALSE(bvh.first_hit({-20, 0, 0}, {-20, 0, 20}, Faces::front).hit());
   EXPECT_TRUE(bvh.first_hit({-20, 0, 0}, {-20, 0, 20}, Faces::both).hit());
+}
+
+// The reference: for each edge of each triangle, the other triangles of its object that use both of the
+// edge's vertex indices, counted over the whole mesh.
+TEST(Bvh, NeighboursAreTheOneTriangleAcrossEachEdgeInTheOppositeOrder) {
+  Scene scene;
+  scene.objects.push_back({"ghost", make_bumpy_sphere(5.0f, 0.2f, 200), glm::mat4(1.0f), {}, {}});
+  scene.objects.back().material.touchable = false;
+  scene.objects.push_back({"sphere", make_bumpy_sphere(50.0f, 1.5f, 4000), glm::mat4(1.0f), {}, {}});
+  Mesh odd;  // a border, a fin on a shared edge, a misoriented pair and a split vertex
+  odd.positions_mm = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0},  {0, 1, 0}, {0, 0, 1}, {0.5f, 0.5f, 1}, {3, 0, 0},
+                      {4, 0, 0}, {4, 1, 0}, {4, -1, 0}, {6, 0, 0}, {7, 0, 0}, {7, 1, 0},       {7, 1, 0}};
+  odd.indices = {0,  1,  2,  0,  2,  3,    // a square: 0-2 shared, the rest a border
+                 2,  0,  5,                // ... and a fin on 0-2, in the first triangle's order
+                 1,  4,  2,                // across the square's edge 1-2
+                 6,  7,  8,  6,  7,  9,    // 6-7 in the same order twice
+                 10, 11, 12, 10, 13, 11};  // across 10-11; 11-12 and 13-11 meet only through positions
+  odd.normals.assign(odd.positions_mm.size(), glm::vec3(0, 0, 1));
+  scene.objects.push_back({"odd", odd, glm::translate(glm::mat4(1.0f), {100, 0, 0}), {}, {}});
+  const Bvh bvh = Bvh::build(scene);
+  ASSERT_EQ(bvh.triangle_count(), 4000u + 8u);
+
+  std::map<std::pair<int, int>, std::uint32_t> primitive_of;
+  for (std::uint32_t i = 0; i < bvh.triangle_count(); ++i) {
+    const Bvh::Location where = bvh.locate(i);
+    primitive_of[{where.object, where.triangle}] = i;
+  }
+  int across = 0, none = 0;
+  for (std::uint32_t i = 0; i < bvh.triangle_count(); ++i) {
+    const Bvh::Location where = bvh.locate(i);
+    const std::vector<std::uint32_t>& indices = scene.objects[std::size_t(where.object)].mesh.indices;
+    const std::uint32_t* corners = &indices[3 * std::size_t(where.triangle)];
+    for (int e = 0; e < 3; ++e) {
+      const std::uint32_t a = corners[e], b = corners[(e + 1) % 3];
+      int sharing = 0;
+      std::uint32_t expected = Bvh::no_neighbour;
+      for (std::size_t u = 0; u < indices.size() / 3; ++u) {
+        if (int(u) == where.triangle) continue;
+        const std::uint32_t* other = &indices[3 * u];
+        if (std::find(other, other + 3, a) == other + 3) continue;
+        for (int m = 0; m < 3; ++m) {
+          if (other[m] != b) continue;
+          ++sharing;
+          if (other[(m + 1) % 3] == a) expected = primitive_of[{where.object, int(u)}];
+        }
+      }
+      if (sharing != 1) expected = Bvh::no_neighbour;
+      ASSERT_EQ(bvh.neighbour(i, e), expected)
+          << "object " << where.object << " triangle " << where.triangle << " edge " << e;
+      // The edge's corners in the BVH's copy are the mesh's, and the neighbour holds them reversed.
+      if (expected != Bvh::no_neighbour) {
+        const auto& mine = bvh.triangle(i).vertices;
+        const auto& theirs = bvh.triangle(expected).vertices;
+        bool reversed = false;
+        for (int m = 0; m < 3; ++m) {
+          reversed = reversed || (theirs[std::size_t(m)] == mine[std::size_t((e + 1) % 3)] &&
+                                  theirs[std::size_t((m + 1) % 3)] == mine[std::size_t(e)]);
+        }
+        EXPECT_TRUE(reversed);
+      }
+      expected == Bvh::no_neighbour ? ++none : ++across;
+    }
+  }
+  EXPECT_EQ(across, 3 * 4000 + 4) << "every edge of the closed sphere, and 1-2 and 10-11 twice";
+  EXPECT_EQ(none, 3 * 8 - 4);
 }
 
 TEST(Bvh, StartToleranceCatchesASegmentStartingJustBehindAFace) {

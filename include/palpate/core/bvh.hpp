@@ -84,10 +84,10 @@ class Bvh {
   // Whether the tree holds triangles of scene object `object`.
   bool contains(int object) const noexcept;
   std::size_t node_count() const noexcept { return nodes_.size(); }
-  // Bytes held by the nodes, the triangles and the object table.
+  // Bytes held by the nodes, the triangles, their neighbours and the object table.
   std::size_t memory_bytes() const noexcept;
   // Those arrays, for a caller that locks them in memory (HapticLoop does).
-  std::array<std::span<const std::byte>, 3> memory() const noexcept;
+  std::array<std::span<const std::byte>, 4> memory() const noexcept;
   // The padded bounds of everything; zero for an empty tree.
   Bounds bounds() const noexcept;
 
@@ -173,6 +173,14 @@ class Bvh {
 
   // A triangle by its BVH index (BvhHit::primitive), for callers that need it in double precision.
   const Triangle& triangle(std::uint32_t primitive) const noexcept { return triangles_[primitive]; }
+  // The triangle across edge `edge` (from vertices[edge] to vertices[(edge + 1) % 3]) of a triangle, by
+  // BVH index: the one other triangle of its object that uses the same two vertices, in the opposite
+  // order. no_neighbour where there is none or more than one (a border, a non-manifold or misoriented
+  // edge, or vertices split by the mesh, as on flat-shaded faces).
+  static constexpr std::uint32_t no_neighbour = 0xffffffffu;
+  std::uint32_t neighbour(std::uint32_t primitive, int edge) const noexcept {
+    return neighbours_[primitive][std::size_t(edge)];
+  }
   // Where a BVH triangle comes from in the scene.
   struct Location {
     int object = -1;    // scene object index
@@ -205,7 +213,8 @@ class Bvh {
 
   std::vector<Node> nodes_;
   std::vector<Triangle> triangles_;
-  std::vector<ObjectRange> objects_;  // touchable objects with triangles, by first_id
+  std::vector<std::array<std::uint32_t, 3>> neighbours_;  // by BVH index, see neighbour()
+  std::vector<ObjectRange> objects_;                      // touchable objects with triangles, by first_id
 };
 
 }  // namespace palpate

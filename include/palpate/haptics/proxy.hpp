@@ -9,8 +9,10 @@
 // corner) the goal is the point nearest the HIP on their free side, by an exact active-set solve; if
 // that leads past the end of their triangles, the constraints are found again from there. On a lone
 // face the goal is the nearest point of the triangle itself (raised off it); when that lies on its
-// edge, the proxy looks from there toward the HIP: a clear view means the HIP is outside and reachable
-// (contact ends); another face in view takes over, and the walk goes on over it. So the proxy slides
+// edge, the face across the edge (Bvh::neighbour) takes over and the walk goes on over it, or on into
+// free space when the HIP is in front of that face. Where the mesh gives no face across (a border, a
+// split vertex), the proxy looks from the edge toward the HIP: a clear view means the HIP is outside
+// and reachable (contact ends); another face in view takes over. So the proxy slides
 // over convex edges and vertices, settles on an edge or vertex that is the surface's nearest point
 // (handed back to where it came from, it stops), and meets a concave neighbour as a wall on its walk.
 // A tick casts at most `max_iterations` segments; a search cut short resumes the next tick (a tip
