@@ -287,6 +287,38 @@ BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
   return hit;
 }
 
+BvhHit Bvh::first_hit_around(const glm::dvec3& from, const glm::dvec3& to, std::uint32_t primitive,
+                             int corner, double start_tolerance_mm, ObjectMask seen) const noexcept {
+  constexpr int max_around = 64;
+  const glm::vec3 centre = triangles_[primitive].vertices[std::size_t(corner)];
+  const glm::dvec3 d = to - from;
+  double best_t = 2.0;  // above any segment parameter
+  std::uint32_t best = 0;
+  std::uint32_t current = primitive;
+  int at = corner;
+  for (int step = 0; step < max_around; ++step) {
+    double t;
+    if (cross_triangle(triangles_[current], from, d, Faces::front, start_tolerance_mm, t) &&
+        (t < best_t || (t == best_t && current < best)) && primitive_seen(seen, current)) {
+      best_t = t;
+      best = current;
+    }
+    // Across the edge from the vertex to the next corner; the triangle there holds the vertex bit for
+    // bit (the build shares world vertices).
+    current = neighbours_[current][std::size_t(at)];
+    if (current == no_neighbour) return {};
+    const auto& corners = triangles_[current].vertices;
+    at = corners[0] == centre ? 0 : corners[1] == centre ? 1 : 2;
+    if (current == primitive) {
+      if (best_t > 1.0) return {};
+      BvhHit hit = make_hit(best, from + d * best_t);
+      hit.t = float(best_t);
+      return hit;
+    }
+  }
+  return {};
+}
+
 BvhHit Bvh::closest_point(const glm::dvec3& point, double max_distance_mm, ObjectMask seen) const noexcept {
   return closest_point_if<false>(point, max_distance_mm,
                                  [&](std::uint32_t primitive) { return primitive_seen(seen, primitive); });

@@ -141,21 +141,27 @@ void keep_neighbourhood(Bvh::Neighbourhood& near, const Bvh& bvh, std::uint32_t 
   bvh.gather(near, glm::vec3(p) - half, glm::vec3(p) + half);
 }
 
-// The triangle across the edge of the face `on` that `point` (in its plane) lies on, or
-// Bvh::no_neighbour at a vertex (within `tolerance` of two edges) or where the mesh gives none.
-std::uint32_t face_across(const Bvh& bvh, const Candidate& on, const glm::dvec3& point,
-                          double tolerance) noexcept {
-  const Bvh::Triangle& tri = bvh.triangle(on.primitive);
+// Where a point in the plane of the face `on` lies on the triangle's border, within `tolerance`: on one
+// edge, or at the corner where two meet (each -1 where not).
+struct Border {
   int edge = -1;
+  int corner = -1;
+};
+Border border_at(const Bvh& bvh, const Candidate& on, const glm::dvec3& point, double tolerance) noexcept {
+  const Bvh::Triangle& tri = bvh.triangle(on.primitive);
+  Border border;
   for (int e = 0; e < 3; ++e) {
     const glm::dvec3 a(tri.vertices[std::size_t(e)]), b(tri.vertices[std::size_t((e + 1) % 3)]);
     const glm::dvec3 along = b - a;
     if (std::abs(glm::dot(glm::cross(along, point - a), on.normal)) > tolerance * glm::length(along))
       continue;
-    if (edge >= 0) return Bvh::no_neighbour;
-    edge = e;
+    if (border.edge < 0) {
+      border.edge = e;
+    } else {  // edges 0 and 1 meet at corner 1, 1 and 2 at 2, 0 and 2 at 0
+      border = {-1, e == border.edge + 1 ? e : 0};
+    }
   }
-  return edge < 0 ? Bvh::no_neighbour : bvh.neighbour(on.primitive, edge);
+  return border;
 }
 
 // The plane of a triangle, raised by the surface epsilon: a constraint.
@@ -321,8 +327,9 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
     // would find it, without the cast (one a crossed edge: on fine meshes a third of a sliding tick).
     // Its walk, cast like any other, meets whatever else is in the way, or reaches the HIP when the
     // HIP is in front of its plane.
-    if (at_edge) {
-      const std::uint32_t beyond = face_across(bvh, c[0], nearest, tolerance);
+    const Border border = at_edge ? border_at(bvh, c[0], nearest, tolerance) : Border{};
+    if (border.edge >= 0) {
+      const std::uint32_t beyond = bvh.neighbour(c[0].primitive, border.edge);
       if (beyond != Bvh::no_neighbour) {
         c[0] = resting_on(bvh, beyond, epsilon);
         count = 1;
@@ -333,8 +340,12 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
       }
     }
     // At a vertex of its face, at an edge the mesh gives no face across, or wedged where no goal fits:
-    // look from here toward the HIP.
-    const BvhHit next = bvh.first_hit(p, hip, Faces::front, tolerance, touchable, near);
+    // look from here toward the HIP. From a vertex, among the faces around it first (the one the look
+    // meets unless another surface passes within micrometres); the whole look when none is in the way.
+    BvhHit next;
+    if (border.corner >= 0)
+      next = bvh.first_hit_around(p, hip, c[0].primitive, border.corner, tolerance, touchable);
+    if (!next.hit()) next = bvh.first_hit(p, hip, Faces::front, tolerance, touchable, near);
     if (!next.hit()) {  // nothing in the way: the HIP is outside and reachable
       p = hip;
       count = 0;

@@ -320,6 +320,87 @@ TEST(Bvh, NeighboursAreTheOneTriangleAcrossEachEdgeInTheOppositeOrder) {
   EXPECT_EQ(none, 3 * 8 - 4);
 }
 
+// A look from just above a vertex of a closed surface meets one of the faces around it: going round the
+// vertex must give the tree's answer, triangle and parameter, bit for bit.
+TEST(Bvh, AroundAVertexALookMeetsWhatTheTreeFinds) {
+  const Scene scene = scene_of(make_bumpy_sphere(50.0f, 1.5f, 20000));
+  const Bvh bvh = Bvh::build(scene);
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<std::uint32_t> pick(0, std::uint32_t(bvh.triangle_count() - 1));
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  int met = 0, missed = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const std::uint32_t primitive = pick(rng);
+    const int corner = int(rng() % 3);
+    const Bvh::Triangle& tri = bvh.triangle(primitive);
+    const glm::dvec3 v(tri.vertices[std::size_t(corner)]);
+    const glm::dvec3 normal =
+        glm::normalize(glm::cross(glm::dvec3(tri.vertices[1]) - glm::dvec3(tri.vertices[0]),
+                                  glm::dvec3(tri.vertices[2]) - glm::dvec3(tri.vertices[0])));
+    // 1 um above the vertex, toward a point up to 3 mm in and 2 mm aside.
+    const glm::dvec3 from = v + 1e-3 * normal;
+    const glm::dvec3 to =
+        v - 3.0 * std::abs(unit(rng)) * normal + 2.0 * glm::dvec3(unit(rng), unit(rng), unit(rng));
+    const BvhHit around = bvh.first_hit_around(from, to, primitive, corner, 1e-6);
+    const BvhHit tree = bvh.first_hit(from, to, Faces::front, 1e-6);
+    if (!around.hit()) {
+      ++missed;
+      continue;
+    }
+    ++met;
+    ASSERT_TRUE(tree.hit()) << i;
+    ASSERT_EQ(around.primitive, tree.primitive) << i;
+    ASSERT_EQ(around.t, tree.t) << i;
+    ASSERT_EQ(around.point_mm, tree.point_mm) << i;
+    EXPECT_EQ(around.object, 0);
+  }
+  EXPECT_GT(met, 15000) << "most looks from a vertex meet a face around it";
+  EXPECT_GT(missed, 2000) << "those that leave along the surface meet none";
+  // Objects the mask leaves out are not met.
+  const std::uint8_t none[] = {0};
+  const Bvh::Triangle& tri = bvh.triangle(0);
+  const glm::dvec3 v(tri.vertices[0]);
+  EXPECT_TRUE(bvh.first_hit_around(v * 1.001, v * 0.9, 0, 0, 1e-6).hit());
+  EXPECT_FALSE(bvh.first_hit_around(v * 1.001, v * 0.9, 0, 0, 1e-6, none).hit());
+}
+
+// Where the faces do not close around the vertex, going round it cannot tell what else the look meets.
+TEST(Bvh, AroundABorderOrSplitVertexThereIsNoAnswer) {
+  const Bvh grid = Bvh::build(scene_of(make_grid(10.0f, 4)));
+  const auto find = [](const Bvh& bvh, glm::vec3 at) {
+    for (std::uint32_t i = 0; i < bvh.triangle_count(); ++i) {
+      for (int k = 0; k < 3; ++k) {
+        if (bvh.triangle(i).vertices[std::size_t(k)] == at) return std::pair{i, k};
+      }
+    }
+    return std::pair{std::uint32_t(0), -1};
+  };
+  const auto [inner, inner_corner] = find(grid, {0.0f, 0.0f, 0.0f});
+  ASSERT_GE(inner_corner, 0);
+  EXPECT_TRUE(grid.first_hit_around({0.1, 0.1, 1e-3}, {0.1, 0.1, -1}, inner, inner_corner, 1e-6).hit());
+  // Straight down through the edge between two faces around it: the tie goes to the lower index, as in
+  // the tree.
+  const BvhHit tie = grid.first_hit_around({1.0, 0.0, 1e-3}, {1.0, 0.0, -1}, inner, inner_corner, 1e-6);
+  ASSERT_TRUE(tie.hit());
+  EXPECT_EQ(tie.primitive, grid.first_hit({1.0, 0.0, 1e-3}, {1.0, 0.0, -1}, Faces::front, 1e-6).primitive);
+  const auto [edge, edge_corner] = find(grid, {-5.0f, 0.0f, 0.0f});
+  ASSERT_GE(edge_corner, 0);
+  EXPECT_FALSE(grid.first_hit_around({-4.9, 0.1, 1e-3}, {-4.9, 0.1, -1}, edge, edge_corner, 1e-6).hit());
+  EXPECT_TRUE(grid.first_hit({-4.9, 0.1, 1e-3}, {-4.9, 0.1, -1}, Faces::front, 1e-6).hit());
+
+  Mesh split = make_grid(10.0f, 4);  // every triangle with corners of its own
+  Mesh apart;
+  for (const std::uint32_t i : split.indices) {
+    apart.indices.push_back(std::uint32_t(apart.positions_mm.size()));
+    apart.positions_mm.push_back(split.positions_mm[i]);
+    apart.normals.push_back(split.normals[i]);
+  }
+  const Bvh soup = Bvh::build(scene_of(apart));
+  const auto [alone, alone_corner] = find(soup, {0.0f, 0.0f, 0.0f});
+  ASSERT_GE(alone_corner, 0);
+  EXPECT_FALSE(soup.first_hit_around({0.1, 0.1, 1e-3}, {0.1, 0.1, -1}, alone, alone_corner, 1e-6).hit());
+}
+
 TEST(Bvh, StartToleranceCatchesASegmentStartingJustBehindAFace) {
   const Bvh bvh = Bvh::build(scene_of(make_box({10, 10, 10})));
   // From 1e-7 mm below the top face (inside) further in.
