@@ -207,7 +207,7 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   const Bvh::Neighbourhood* near = &state.neighbourhood;
   // The last face met, for the contact when the segment cap cuts a search short.
   std::uint32_t last_primitive = count > 0 ? c[0].primitive : 0;
-  bool handed_over = false;       // the last look past an edge handed the proxy to the face beyond
+  bool handed_over = false;       // the last edge crossed handed the proxy to the face beyond
   glm::dvec3 handover_from(0.0);  // ... from this nearest point of the face before
 
   // Moves p toward `to` until the path is epsilon above the plane of the triangle it ran into (not at

@@ -6,7 +6,8 @@
 //
 // Layout: one flat array of 32-byte nodes (two sibling children stored side by side, depth-first), and
 // the triangles copied into leaf order, 40 bytes each (three float vertices and an id), so a leaf's
-// triangles are one contiguous read. Built top-down with a binned surface-area heuristic.
+// triangles are one contiguous read, and for each the triangles across its edges (12 bytes). Built
+// top-down with a binned surface-area heuristic.
 //
 // build() allocates and may throw palpate::Error; every query is const, noexcept, allocation-free and
 // safe in the haptic tick, and safe to run from several threads at once.

@@ -15,7 +15,7 @@
 // and reachable (contact ends); another face in view takes over. So the proxy slides
 // over convex edges and vertices, settles on an edge or vertex that is the surface's nearest point
 // (handed back to where it came from, it stops), and meets a concave neighbour as a wall on its walk.
-// A tick casts at most `max_iterations` segments; a search cut short resumes the next tick (a tip
+// A tick takes at most `max_iterations` steps; a search cut short resumes the next tick (a tip
 // jumping right across a curved object is followed a triangle per segment).
 //
 // The proxy floats `surface_epsilon_mm` above the planes it touches. Only front faces (crossed from
@@ -44,8 +44,9 @@ struct ProxyParams {
   // How far outside the surfaces it touches the proxy floats, mm (> 0): far above double rounding at
   // scene scale (1e-13 mm), far below anything a hand feels or a screen shows.
   double surface_epsilon_mm = 1e-3;
-  // Segments cast per tick at most (each reaches its goal, meets one more plane or looks past an edge).
-  // Sliding inside a face needs 1, across an edge 2-4, into a corner 3-4.
+  // Steps per tick at most (each casts a segment that reaches its goal or meets one more plane, looks
+  // from an edge, or hands the proxy over to the face across one). Sliding inside a face needs 1,
+  // across an edge 2-4, into a corner 3-4.
   int max_iterations = 16;
 };
 
@@ -62,7 +63,7 @@ struct ProxyState {
   std::array<ProxyConstraint, 3> constraints{};  // the planes active at the end of the last step
   int constraint_count = 0;
   bool placed = false;      // false until reset() or the first step, which puts the proxy at the HIP
-  int last_iterations = 0;  // segments the last step cast (for statistics and tests)
+  int last_iterations = 0;  // steps the last tick took (for statistics and tests)
   // Where its casts start in the BVH while it rests on a surface (gathered as it moves; see Bvh::first_hit).
   Bvh::Neighbourhood neighbourhood;
 
