@@ -237,10 +237,12 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
         std::any_of(c, c + count, [&](const Candidate& k) { return k.primitive == closer.primitive; })) {
       return false;
     }
+    const Candidate face = resting_on(bvh, closer.primitive, epsilon);
     const Bvh::Triangle& tri = bvh.triangle(closer.primitive);
-    const glm::dvec3 v0(tri.vertices[0]), v1(tri.vertices[1]), v2(tri.vertices[2]);
-    const glm::dvec3 normal = glm::normalize(glm::cross(v1 - v0, v2 - v0));
-    const glm::dvec3 onto = closest_point_on_triangle(hip, v0, v1, v2) + normal * epsilon;
+    const glm::dvec3 onto =
+        closest_point_on_triangle(hip, glm::dvec3(tri.vertices[0]), glm::dvec3(tri.vertices[1]),
+                                  glm::dvec3(tri.vertices[2])) +
+        face.normal * epsilon;
     // The straight way there runs through the surface (a saddle): rest on that face where the proxy
     // is and walk over it (its walls met on the walk), once a tick so that the search cannot cycle.
     if (bvh.first_hit(p, onto, Faces::front, tolerance, touchable, near).hit()) {
@@ -249,7 +251,7 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
     } else {
       p = onto;
     }
-    c[0] = Candidate{normal, glm::dot(normal, v0) + epsilon, closer.primitive, 0.0};
+    c[0] = face;
     count = 1;
     last_primitive = closer.primitive;
     handed_over = false;

@@ -10,9 +10,10 @@
 // that leads past the end of their triangles, the constraints are found again from there. On a lone
 // face the goal is the nearest point of the triangle itself (raised off it); when that lies on its
 // edge, the face across the edge (Bvh::neighbour) takes over and the walk goes on over it, or on into
-// free space when the HIP is in front of that face. Where the mesh gives no face across (a border, a
-// split vertex), the proxy looks from the edge toward the HIP: a clear view means the HIP is outside
-// and reachable (contact ends); another face in view takes over. So the proxy slides
+// free space when the HIP is in front of that face. At a vertex, or where the mesh gives no face across
+// (a border, a split vertex), the proxy looks from there toward the HIP (from a vertex, among the faces
+// around it first: Bvh::first_hit_around): a clear view means the HIP is outside and reachable
+// (contact ends); another face in view takes over. So the proxy slides
 // over convex edges and vertices, settles on an edge or vertex that is the surface's nearest point
 // (handed back to where it came from, it stops), and meets a concave neighbour as a wall on its walk.
 // A tick takes at most `max_iterations` steps; a search cut short resumes the next tick (a tip
