@@ -288,14 +288,18 @@ BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
 }
 
 BvhHit Bvh::first_hit_around(const glm::dvec3& from, const glm::dvec3& to, std::uint32_t primitive,
-                             int corner, double start_tolerance_mm, ObjectMask seen) const noexcept {
+                             const glm::dvec3& vertex, double start_tolerance_mm,
+                             ObjectMask seen) const noexcept {
   constexpr int max_around = 64;
-  const glm::vec3 centre = triangles_[primitive].vertices[std::size_t(corner)];
+  const auto& first = triangles_[primitive].vertices;
+  int at = 0;
+  while (at < 3 && glm::dvec3(first[std::size_t(at)]) != vertex) ++at;
+  if (at == 3) return {};
+  const glm::vec3 centre = first[std::size_t(at)];
   const glm::dvec3 d = to - from;
   double best_t = 2.0;  // above any segment parameter
   std::uint32_t best = 0;
   std::uint32_t current = primitive;
-  int at = corner;
   for (int step = 0; step < max_around; ++step) {
     double t;
     if (cross_triangle(triangles_[current], from, d, Faces::front, start_tolerance_mm, t) &&

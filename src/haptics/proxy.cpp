@@ -141,27 +141,20 @@ void keep_neighbourhood(Bvh::Neighbourhood& near, const Bvh& bvh, std::uint32_t 
   bvh.gather(near, glm::vec3(p) - half, glm::vec3(p) + half);
 }
 
-// Where a point in the plane of the face `on` lies on the triangle's border, within `tolerance`: on one
-// edge, or at the corner where two meet (each -1 where not).
-struct Border {
-  int edge = -1;
-  int corner = -1;
-};
-Border border_at(const Bvh& bvh, const Candidate& on, const glm::dvec3& point, double tolerance) noexcept {
+// The edge of the face `on` that a point in its plane lies on, within `tolerance`, or -1: off the
+// edges, or within it of two (at a corner).
+int edge_at(const Bvh& bvh, const Candidate& on, const glm::dvec3& point, double tolerance) noexcept {
   const Bvh::Triangle& tri = bvh.triangle(on.primitive);
-  Border border;
+  int edge = -1;
   for (int e = 0; e < 3; ++e) {
     const glm::dvec3 a(tri.vertices[std::size_t(e)]), b(tri.vertices[std::size_t((e + 1) % 3)]);
     const glm::dvec3 along = b - a;
     if (std::abs(glm::dot(glm::cross(along, point - a), on.normal)) > tolerance * glm::length(along))
       continue;
-    if (border.edge < 0) {
-      border.edge = e;
-    } else {  // edges 0 and 1 meet at corner 1, 1 and 2 at 2, 0 and 2 at 0
-      border = {-1, e == border.edge + 1 ? e : 0};
-    }
+    if (edge >= 0) return -1;
+    edge = e;
   }
-  return border;
+  return edge;
 }
 
 // The plane of a triangle, raised by the surface epsilon: a constraint.
@@ -329,9 +322,9 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
     // would find it, without the cast (one a crossed edge: on fine meshes a third of a sliding tick).
     // Its walk, cast like any other, meets whatever else is in the way, or reaches the HIP when the
     // HIP is in front of its plane.
-    const Border border = at_edge ? border_at(bvh, c[0], nearest, tolerance) : Border{};
-    if (border.edge >= 0) {
-      const std::uint32_t beyond = bvh.neighbour(c[0].primitive, border.edge);
+    const int edge = at_edge ? edge_at(bvh, c[0], nearest, tolerance) : -1;
+    if (edge >= 0) {
+      const std::uint32_t beyond = bvh.neighbour(c[0].primitive, edge);
       if (beyond != Bvh::no_neighbour) {
         c[0] = resting_on(bvh, beyond, epsilon);
         count = 1;
@@ -345,8 +338,8 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
     // look from here toward the HIP. From a vertex, among the faces around it first (the one the look
     // meets unless another surface passes within micrometres); the whole look when none is in the way.
     BvhHit next;
-    if (border.corner >= 0)
-      next = bvh.first_hit_around(p, hip, c[0].primitive, border.corner, tolerance, touchable);
+    if (at_edge && edge < 0)
+      next = bvh.first_hit_around(p, hip, c[0].primitive, nearest, tolerance, touchable);
     if (!next.hit()) next = bvh.first_hit(p, hip, Faces::front, tolerance, touchable, near);
     if (!next.hit()) {  // nothing in the way: the HIP is outside and reachable
       p = hip;

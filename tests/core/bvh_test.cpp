@@ -341,7 +341,7 @@ TEST(Bvh, AroundAVertexALookMeetsWhatTheTreeFinds) {
     const glm::dvec3 from = v + 1e-3 * normal;
     const glm::dvec3 to =
         v - 3.0 * std::abs(unit(rng)) * normal + 2.0 * glm::dvec3(unit(rng), unit(rng), unit(rng));
-    const BvhHit around = bvh.first_hit_around(from, to, primitive, corner, 1e-6);
+    const BvhHit around = bvh.first_hit_around(from, to, primitive, v, 1e-6);
     const BvhHit tree = bvh.first_hit(from, to, Faces::front, 1e-6);
     if (!around.hit()) {
       ++missed;
@@ -360,33 +360,51 @@ TEST(Bvh, AroundAVertexALookMeetsWhatTheTreeFinds) {
   const std::uint8_t none[] = {0};
   const Bvh::Triangle& tri = bvh.triangle(0);
   const glm::dvec3 v(tri.vertices[0]);
-  EXPECT_TRUE(bvh.first_hit_around(v * 1.001, v * 0.9, 0, 0, 1e-6).hit());
-  EXPECT_FALSE(bvh.first_hit_around(v * 1.001, v * 0.9, 0, 0, 1e-6, none).hit());
+  EXPECT_TRUE(bvh.first_hit_around(v * 1.001, v * 0.9, 0, v, 1e-6).hit());
+  EXPECT_FALSE(bvh.first_hit_around(v * 1.001, v * 0.9, 0, v, 1e-6, none).hit());
+  // A point that is not one of the triangle's corners has no faces around it.
+  const glm::dvec3 beside = (v + glm::dvec3(tri.vertices[1])) * 0.5;
+  EXPECT_FALSE(bvh.first_hit_around(beside * 1.001, beside * 0.9, 0, beside, 1e-6).hit());
 }
 
 // Where the faces do not close around the vertex, going round it cannot tell what else the look meets.
 TEST(Bvh, AroundABorderOrSplitVertexThereIsNoAnswer) {
-  const Bvh grid = Bvh::build(scene_of(make_grid(10.0f, 4)));
-  const auto find = [](const Bvh& bvh, glm::vec3 at) {
+  // Each triangle with a corner at `at`, and a look straight down through each one's middle from 1 um
+  // above it, starting from each.
+  const auto looks_around = [](const Bvh& bvh, glm::dvec3 at) {
+    std::vector<std::uint32_t> around;
     for (std::uint32_t i = 0; i < bvh.triangle_count(); ++i) {
-      for (int k = 0; k < 3; ++k) {
-        if (bvh.triangle(i).vertices[std::size_t(k)] == at) return std::pair{i, k};
+      for (const glm::vec3& corner : bvh.triangle(i).vertices) {
+        if (glm::dvec3(corner) == at) around.push_back(i);
       }
     }
-    return std::pair{std::uint32_t(0), -1};
+    int hits = 0, looks = 0;
+    for (const std::uint32_t start : around) {
+      for (const std::uint32_t through : around) {
+        const auto& corners = bvh.triangle(through).vertices;
+        const glm::dvec3 middle =
+            (glm::dvec3(corners[0]) + glm::dvec3(corners[1]) + glm::dvec3(corners[2])) / 3.0;
+        hits += bvh.first_hit_around(middle + glm::dvec3(0, 0, 1e-3), middle - glm::dvec3(0, 0, 1), start, at,
+                                     1e-6)
+                    .hit();
+        ++looks;
+      }
+    }
+    return std::pair{hits, looks};
   };
-  const auto [inner, inner_corner] = find(grid, {0.0f, 0.0f, 0.0f});
-  ASSERT_GE(inner_corner, 0);
-  EXPECT_TRUE(grid.first_hit_around({0.1, 0.1, 1e-3}, {0.1, 0.1, -1}, inner, inner_corner, 1e-6).hit());
-  // Straight down through the edge between two faces around it: the tie goes to the lower index, as in
-  // the tree.
-  const BvhHit tie = grid.first_hit_around({1.0, 0.0, 1e-3}, {1.0, 0.0, -1}, inner, inner_corner, 1e-6);
+  const Bvh grid = Bvh::build(scene_of(make_grid(10.0f, 4)));
+  EXPECT_EQ(looks_around(grid, {0, 0, 0}), std::pair(36, 36)) << "six faces around an inner vertex";
+  EXPECT_EQ(looks_around(grid, {-5, 0, 0}), std::pair(0, 9)) << "three on the border";
+  // Straight down through the edge between two faces around the inner vertex: the tie goes to the lower
+  // index, as in the tree.
+  std::uint32_t inner = 0;
+  while (glm::dvec3(grid.triangle(inner).vertices[0]) != glm::dvec3(0) &&
+         glm::dvec3(grid.triangle(inner).vertices[1]) != glm::dvec3(0) &&
+         glm::dvec3(grid.triangle(inner).vertices[2]) != glm::dvec3(0))
+    ++inner;
+  const BvhHit tie = grid.first_hit_around({1.0, 0.0, 1e-3}, {1.0, 0.0, -1}, inner, glm::dvec3(0), 1e-6);
   ASSERT_TRUE(tie.hit());
   EXPECT_EQ(tie.primitive, grid.first_hit({1.0, 0.0, 1e-3}, {1.0, 0.0, -1}, Faces::front, 1e-6).primitive);
-  const auto [edge, edge_corner] = find(grid, {-5.0f, 0.0f, 0.0f});
-  ASSERT_GE(edge_corner, 0);
-  EXPECT_FALSE(grid.first_hit_around({-4.9, 0.1, 1e-3}, {-4.9, 0.1, -1}, edge, edge_corner, 1e-6).hit());
-  EXPECT_TRUE(grid.first_hit({-4.9, 0.1, 1e-3}, {-4.9, 0.1, -1}, Faces::front, 1e-6).hit());
 
   Mesh split = make_grid(10.0f, 4);  // every triangle with corners of its own
   Mesh apart;
@@ -395,10 +413,7 @@ TEST(Bvh, AroundABorderOrSplitVertexThereIsNoAnswer) {
     apart.positions_mm.push_back(split.positions_mm[i]);
     apart.normals.push_back(split.normals[i]);
   }
-  const Bvh soup = Bvh::build(scene_of(apart));
-  const auto [alone, alone_corner] = find(soup, {0.0f, 0.0f, 0.0f});
-  ASSERT_GE(alone_corner, 0);
-  EXPECT_FALSE(soup.first_hit_around({0.1, 0.1, 1e-3}, {0.1, 0.1, -1}, alone, alone_corner, 1e-6).hit());
+  EXPECT_EQ(looks_around(Bvh::build(scene_of(apart)), {0, 0, 0}), std::pair(0, 36));
 }
 
 TEST(Bvh, StartToleranceCatchesASegmentStartingJustBehindAFace) {

@@ -129,14 +129,15 @@ class Bvh {
                    double start_tolerance_mm = 0.0, ObjectMask seen = {},
                    const Neighbourhood* near = nullptr) const noexcept;
 
-  // The first of the triangles around corner `corner` of triangle `primitive` that the segment crosses
-  // (tested as first_hit tests them; ties to the lowest index), found by going round the vertex through
-  // neighbour() instead of searching the tree: for a look from just above a vertex, which meets one of
-  // them first unless another surface passes within the segment's first few micrometres. No hit when
-  // none is crossed, when the triangles do not close around the vertex (a border, a split vertex) or when
-  // more than 64 meet there.
-  BvhHit first_hit_around(const glm::dvec3& from, const glm::dvec3& to, std::uint32_t primitive, int corner,
-                          double start_tolerance_mm = 0.0, ObjectMask seen = {}) const noexcept;
+  // The first of the triangles around the corner of triangle `primitive` at `vertex` that the segment
+  // crosses (tested as first_hit tests them; ties to the lowest index), found by going round the vertex
+  // through neighbour() instead of searching the tree: for a look from just above a vertex, which meets
+  // one of them first unless another surface passes within the segment's first few micrometres. No hit
+  // when no corner of the triangle is at `vertex` (bit for bit), when none is crossed, when the
+  // triangles do not close around the vertex (a border, a split vertex) or when more than 64 meet there.
+  BvhHit first_hit_around(const glm::dvec3& from, const glm::dvec3& to, std::uint32_t primitive,
+                          const glm::dvec3& vertex, double start_tolerance_mm = 0.0,
+                          ObjectMask seen = {}) const noexcept;
 
   // The closest point on any triangle of the `seen` objects to `point` no farther than
   // `max_distance_mm`, or no hit.
