@@ -398,7 +398,8 @@ BvhHit Bvh::closest_point_if(const glm::dvec3& point, double max_distance_mm,
 }
 
 BvhHit Bvh::closest_point_near(const glm::dvec3& point, const glm::dvec3& around, double radius_mm,
-                               ObjectMask seen, const Neighbourhood* near) const noexcept {
+                               ObjectMask seen, const Neighbourhood* near,
+                               std::array<std::uint32_t, 2> left_out) const noexcept {
   if (nodes_.empty() || !(radius_mm >= 0.0)) return {};
   const glm::vec3 centre(around);
   // Box distances are in float: compare against a slightly enlarged bound so rounding never prunes.
@@ -407,6 +408,7 @@ BvhHit Bvh::closest_point_near(const glm::dvec3& point, const glm::dvec3& around
   glm::dvec3 best_point(0.0);
   std::uint32_t best = 0;
   const auto consider = [&](std::uint32_t i) {
+    if (i == left_out[0] || i == left_out[1]) return;
     const Triangle& tri = triangles_[i];
     const glm::dvec3 a = vertex(tri, 0), b = vertex(tri, 1), c = vertex(tri, 2);
     // Its bounds first (in double, exact): most of a leaf's triangles are out of reach.

@@ -202,6 +202,7 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   std::uint32_t last_primitive = count > 0 ? c[0].primitive : 0;
   bool handed_over = false;       // the last edge crossed handed the proxy to the face beyond
   glm::dvec3 handover_from(0.0);  // ... from this nearest point of the face before
+  std::uint32_t handover_face = Bvh::no_neighbour;  // ... and that face (none: it left a wedge)
 
   // Moves p toward `to` until the path is epsilon above the plane of the triangle it ran into (not at
   // all when it starts closer than that): everything before the hit is free, so this never crosses a
@@ -222,10 +223,11 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   // At an edge or vertex where the faces meet in a ridge or saddle, a face the proxy touches but does
   // not rest on may come nearer the HIP than where it rests: it moves onto that face's nearest point
   // when the straight way there is free. Each such step brings it nearer the HIP, so the search cannot
-  // cycle. False when there is no such face (a local minimum of its distance to the HIP).
+  // cycle. False when there is no such face (a local minimum of its distance to the HIP). The faces
+  // `known` names are known to be no nearer and are not searched.
   bool stepped_over_saddle = false;
-  const auto step_onto_closer_face = [&]() {
-    const BvhHit closer = bvh.closest_point_near(hip, p, near_reach * epsilon, touchable, near);
+  const auto step_onto_closer_face = [&](std::array<std::uint32_t, 2> known) {
+    const BvhHit closer = bvh.closest_point_near(hip, p, near_reach * epsilon, touchable, near, known);
     if (!closer.hit() || double(closer.distance_mm) >= glm::distance(p, hip) - 2.0 * epsilon ||
         std::any_of(c, c + count, [&](const Candidate& k) { return k.primitive == closer.primitive; })) {
       return false;
@@ -285,9 +287,10 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
           at_edge = beyond2 > tolerance * tolerance;
           goal = lifted;
           // Handed back to the edge or vertex it was handed over from: the surface's nearest point,
-          // unless a face it touches comes nearer.
+          // unless a face it touches comes nearer. Not this face nor the one before: their nearest
+          // points are where the proxy was handed over, no nearer than its own distance less epsilon.
           if (at_edge && handed_over && glm::distance(nearest, handover_from) < tolerance) {
-            if (step_onto_closer_face()) continue;
+            if (step_onto_closer_face({c[0].primitive, handover_face})) continue;
             break;
           }
         }
@@ -326,6 +329,7 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
     if (edge >= 0) {
       const std::uint32_t beyond = bvh.neighbour(c[0].primitive, edge);
       if (beyond != Bvh::no_neighbour) {
+        handover_face = c[0].primitive;
         c[0] = resting_on(bvh, beyond, epsilon);
         count = 1;
         last_primitive = beyond;
@@ -349,11 +353,12 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
     if (!s.found) break;
     if (std::any_of(c, c + count, [&](const Candidate& k) { return k.primitive == next.primitive; })) {
       // Its own face in the way: as close as it gets, unless a face it touches comes nearer.
-      if (step_onto_closer_face()) continue;
+      if (step_onto_closer_face({Bvh::no_neighbour, Bvh::no_neighbour})) continue;
       break;
     } else {
       // Past its edge, or out of a false corner: the face in view takes over (a concave one is met
       // again as a wall on the walk).
+      handover_face = wedged ? Bvh::no_neighbour : c[0].primitive;
       c[0] = stop_before(next, hip);
     }
     count = 1;

@@ -6,6 +6,7 @@
 
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <limits>
 #include <random>
 
 #include "palpate/core/bvh.hpp"
@@ -151,6 +152,67 @@ TEST(BvhNeighbourhood, NearestPointsOfTheFacesAroundAPointMatchTheRoots) {
   }
   EXPECT_GT(found, compared / 2);
   EXPECT_GT(started_near, compared / 2);
+}
+
+// Leaving faces out of the search: the nearest of the others, against a brute force over every
+// triangle, from the root and from the leaves alike.
+TEST(BvhNeighbourhood, NearestPointsLeaveOutTheFacesNamed) {
+  const Scene scene = bumpy_sphere_scene(4000);
+  const Mesh& mesh = scene.objects[0].mesh;
+  const Bvh bvh = Bvh::build(scene);
+  const auto brute_force = [&](const glm::dvec3& tip, const glm::dvec3& around, double radius,
+                               std::array<std::uint32_t, 2> left_out) {
+    double best_d2 = std::numeric_limits<double>::infinity();
+    std::uint32_t best = Bvh::no_neighbour;
+    for (std::uint32_t i = 0; i < bvh.triangle_count(); ++i) {
+      if (i == left_out[0] || i == left_out[1]) continue;
+      const auto& v = bvh.triangle(i).vertices;
+      const glm::dvec3 a(v[0]), b(v[1]), c(v[2]);
+      const glm::dvec3 touch = closest_point_on_triangle(around, a, b, c) - around;
+      if (glm::dot(touch, touch) > radius * radius) continue;
+      const glm::dvec3 q = closest_point_on_triangle(tip, a, b, c);
+      const double d2 = glm::dot(q - tip, q - tip);
+      if (d2 < best_d2) best_d2 = d2, best = i;  // ascending: a tie keeps the lowest index
+    }
+    return std::pair{best, float(std::sqrt(best_d2))};
+  };
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0), fraction(0.0, 1.0);
+  std::uniform_int_distribution<std::size_t> pick_triangle(0, mesh.triangle_count() - 1);
+  std::uniform_int_distribution<std::uint32_t> pick_primitive(0, std::uint32_t(bvh.triangle_count() - 1));
+  Bvh::Neighbourhood near;
+  long compared = 0, left_out_answer = 0, found = 0, started_near = 0;
+  while (compared < 3000) {
+    const std::size_t t = pick_triangle(rng);
+    const glm::dvec3 a(mesh.positions_mm[mesh.indices[3 * t]]), b(mesh.positions_mm[mesh.indices[3 * t + 1]]),
+        c(mesh.positions_mm[mesh.indices[3 * t + 2]]);
+    if (!bvh.gather(near, glm::vec3(a) - 8.0f, glm::vec3(a) + 8.0f)) continue;
+    const glm::dvec3 normal = glm::normalize(glm::cross(b - a, c - a));
+    const double u = fraction(rng);
+    const glm::dvec3 around = (compared % 2 ? a : a + u * (b - a)) + 1e-3 * normal;
+    const glm::dvec3 tip =
+        around - (0.5 + 2.0 * fraction(rng)) * normal + 2.0 * glm::dvec3(unit(rng), unit(rng), unit(rng));
+    const double radius = 0.5 + 3.0 * fraction(rng);
+    // The answer itself and another face, or two faces at random.
+    const BvhHit all = bvh.closest_point_near(tip, around, radius);
+    std::array<std::uint32_t, 2> left_out = {pick_primitive(rng), pick_primitive(rng)};
+    if (compared % 3 != 0 && all.hit()) left_out[compared % 3 - 1] = all.primitive;
+    const auto [expected, distance] = brute_force(tip, around, radius, left_out);
+    for (const Bvh::Neighbourhood* from : std::array<const Bvh::Neighbourhood*, 2>{nullptr, &near}) {
+      const BvhHit hit = bvh.closest_point_near(tip, around, radius, {}, from, left_out);
+      ASSERT_EQ(hit.hit(), expected != Bvh::no_neighbour) << compared;
+      if (!hit.hit()) continue;
+      ASSERT_EQ(hit.primitive, expected) << compared;
+      ASSERT_EQ(hit.distance_mm, distance) << compared;
+    }
+    ++compared;
+    found += expected != Bvh::no_neighbour;
+    started_near += near.covers(around - radius) && near.covers(around + radius);
+    left_out_answer += all.hit() && all.primitive != expected;
+  }
+  EXPECT_GT(found, compared * 9 / 10);
+  EXPECT_GT(left_out_answer, compared / 2);
+  EXPECT_GT(started_near, compared * 9 / 10);
 }
 
 TEST(BvhNeighbourhood, GathersEveryLeafThatMeetsTheBoxWithItsBounds) {

@@ -152,9 +152,13 @@ class Bvh {
   // nearest `point`, or no hit: what a proxy resting at `around` could reach by sliding onto one of the
   // faces it touches.
   // Given a neighbourhood that holds the ball, only its leaves are searched (the same answer: ties go
-  // to the lowest BVH index).
+  // to the lowest BVH index). The triangles `left_out` names (BVH indices; no_neighbour for none) are
+  // not searched: faces the caller knows to be no nearer, which would cost the most to test (they pass
+  // through the ball).
   BvhHit closest_point_near(const glm::dvec3& point, const glm::dvec3& around, double radius_mm,
-                            ObjectMask seen = {}, const Neighbourhood* near = nullptr) const noexcept;
+                            ObjectMask seen = {}, const Neighbourhood* near = nullptr,
+                            std::array<std::uint32_t, 2> left_out = {no_neighbour,
+                                                                     no_neighbour}) const noexcept;
 
   // Calls visit(primitive) for each triangle whose bounds meet the box [low, high] (world mm). No
   // allocation; for searches around a region rather than along a ray or from a point.
