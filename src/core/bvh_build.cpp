@@ -6,6 +6,7 @@
 #include <bit>
 #include <cmath>
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 #include <limits>
 #include <string>
@@ -237,6 +238,21 @@ void find_neighbours(const std::vector<std::uint32_t>& corners, std::size_t vert
   }
 }
 
+// The median of the longest edges of an even sample of up to 1,025 triangles.
+float median_longest_edge(const std::vector<Bvh::Triangle>& triangles) {
+  if (triangles.empty()) return 0.0f;
+  const std::size_t stride = std::max<std::size_t>(1, triangles.size() / 1024);
+  std::vector<float> longest;
+  for (std::size_t i = 0; i < triangles.size(); i += stride) {
+    const auto& v = triangles[i].vertices;
+    longest.push_back(
+        std::max({glm::distance(v[0], v[1]), glm::distance(v[1], v[2]), glm::distance(v[2], v[0])}));
+  }
+  const auto middle = longest.begin() + std::ptrdiff_t(longest.size() / 2);
+  std::nth_element(longest.begin(), middle, longest.end());
+  return *middle;
+}
+
 }  // namespace
 
 Bvh Bvh::build(const Scene& scene) {
@@ -351,6 +367,7 @@ Bvh Bvh::build(const Scene& scene, ObjectMask included) {
     primitive_of[id] = std::uint32_t(i);
   }
   find_neighbours(corners, world.size(), primitive_of, bvh.neighbours_);
+  bvh.typical_triangle_size_mm_ = median_longest_edge(bvh.triangles_);
   return bvh;
 }
 

@@ -128,15 +128,21 @@ bool supported(const Bvh& bvh, const Candidate* c, int count, const glm::dvec3& 
 constexpr double neighbourhood_faces = 0.7;
 constexpr double min_neighbourhood_mm = 0.05;
 
+// A free proxy (`face` no_neighbour) keeps one too, sized by the tree's typical triangle, so that the
+// tick in which it meets the surface casts among leaves: from the root, that tick's two casts read
+// parts of the tree untouched since the last contact, and made it a touch's slowest.
 void keep_neighbourhood(Bvh::Neighbourhood& near, const Bvh& bvh, std::uint32_t face,
                         const glm::dvec3& p) noexcept {
   const glm::dvec3 half_width = 0.5 * (glm::dvec3(near.high) - glm::dvec3(near.low));
   const glm::dvec3 offset = glm::abs(p - 0.5 * (glm::dvec3(near.high) + glm::dvec3(near.low)));
   if (bvh.gathered_here(near) && glm::all(glm::lessThanEqual(offset, 0.5 * half_width))) return;
-  const Bvh::Triangle& tri = bvh.triangle(face);
-  const float size = std::max({glm::distance(tri.vertices[0], tri.vertices[1]),
-                               glm::distance(tri.vertices[1], tri.vertices[2]),
-                               glm::distance(tri.vertices[2], tri.vertices[0])});
+  float size = bvh.typical_triangle_size_mm();
+  if (face != Bvh::no_neighbour) {
+    const Bvh::Triangle& tri = bvh.triangle(face);
+    size = std::max({glm::distance(tri.vertices[0], tri.vertices[1]),
+                     glm::distance(tri.vertices[1], tri.vertices[2]),
+                     glm::distance(tri.vertices[2], tri.vertices[0])});
+  }
   const float half = std::max(float(neighbourhood_faces) * size, float(min_neighbourhood_mm));
   bvh.gather(near, glm::vec3(p) - half, glm::vec3(p) + half);
 }
@@ -196,7 +202,7 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
       c[count++] = {k.normal, k.offset_mm, k.primitive, k.multiplier_mm};
   }
   glm::dvec3 p = state.position_mm;
-  if (count > 0) keep_neighbourhood(state.neighbourhood, bvh, c[0].primitive, p);
+  keep_neighbourhood(state.neighbourhood, bvh, count > 0 ? c[0].primitive : Bvh::no_neighbour, p);
   const Bvh::Neighbourhood* near = &state.neighbourhood;
   // The last face met, for the contact when the segment cap cuts a search short.
   std::uint32_t last_primitive = count > 0 ? c[0].primitive : 0;

@@ -106,6 +106,21 @@ TEST(Bvh, EmptySceneHasNoTrianglesAndNeverHits) {
   EXPECT_FALSE(bvh.closest_point({0, 0, 0}, 1e9).hit());
 }
 
+// Two grids of right triangles (longest edge: the cell's diagonal), the finer one the more numerous,
+// then the coarser: the typical size is the diagonal of the more numerous, whichever object it is.
+TEST(Bvh, TypicalTriangleSizeIsTheMedianLongestEdge) {
+  EXPECT_EQ(Bvh::build(Scene{}).typical_triangle_size_mm(), 0.0f);
+  for (const std::size_t coarse_cells : {std::size_t(20), std::size_t(60)}) {
+    Scene scene;
+    scene.objects.push_back({"fine", make_grid(10.0f, 40), glm::mat4(1.0f), {}, {}});  // 3,200 triangles
+    scene.objects.push_back({"coarse", make_grid(100.0f, coarse_cells), glm::mat4(1.0f), {}, {}});
+    const Bvh bvh = Bvh::build(scene);
+    const double fine = 10.0 / 40.0 * std::sqrt(2.0), coarse = 100.0 / double(coarse_cells) * std::sqrt(2.0);
+    const double expected = 2 * coarse_cells * coarse_cells > 3200 ? coarse : fine;
+    EXPECT_NEAR(bvh.typical_triangle_size_mm(), expected, 1e-6 * expected) << coarse_cells;
+  }
+}
+
 TEST(Bvh, EveryTriangleSitsInExactlyOneLeafInsideEveryBoxAbove) {
   const Scene scene = scene_of(make_bumpy_sphere(50.0f, 1.5f, 20000));
   const Bvh bvh = Bvh::build(scene);

@@ -54,6 +54,22 @@ TEST_F(ProxyOnCube, FollowsTheHipInFreeSpace) {
   EXPECT_EQ(glm::dvec3(c.point_mm), glm::dvec3(c.hip_mm));
 }
 
+// Free, it keeps the leaves around itself (a box 0.7 typical triangles wide either side) so that the
+// tick that meets the surface casts among them; far from everything the box is empty. (Each tick
+// gathers around where the proxy starts it.)
+TEST_F(ProxyOnCube, KeepsTheLeavesAroundItInFreeSpace) {
+  move(state, bvh, hip, {3.0, -4.0, 200.0}, 2);
+  EXPECT_EQ(state.neighbourhood.count, 0);
+  move(state, bvh, hip, {3.0, -4.0, 20.5}, 10);
+  EXPECT_FALSE(state.in_contact());
+  EXPECT_GT(state.neighbourhood.count, 0);
+  EXPECT_TRUE(state.neighbourhood.covers(state.position_mm));
+  EXPECT_TRUE(bvh.gathered_here(state.neighbourhood));
+  const Contact c = move(state, bvh, hip, {3.0, -4.0, 19.5}, 1);
+  ASSERT_TRUE(c.in_contact());
+  expect_near(state.position_mm, {3.0, -4.0, 20.0 + eps}, 1e-9, "proxy");
+}
+
 TEST_F(ProxyOnCube, RestsOnTheFaceAboveTheHipWithTheFaceNormal) {
   const Contact c = move(state, bvh, hip, {3.0, -4.0, 17.5}, 50);
   ASSERT_TRUE(c.in_contact());

@@ -91,6 +91,9 @@ class Bvh {
   std::array<std::span<const std::byte>, 4> memory() const noexcept;
   // The padded bounds of everything; zero for an empty tree.
   Bounds bounds() const noexcept;
+  // The median longest edge of an even sample of the triangles (0 for an empty tree): the scale of the
+  // mesh where a point has no face of its own to measure, such as a proxy in free space.
+  float typical_triangle_size_mm() const noexcept { return typical_triangle_size_mm_; }
 
   // The leaves whose bounds meet a box, listed flat with their bounds: where a query that stays in the
   // box looks instead of walking the tree from the root (the haptic proxy keeps one around itself and
@@ -230,6 +233,7 @@ class Bvh {
   std::vector<Triangle> triangles_;
   std::vector<std::array<std::uint32_t, 3>> neighbours_;  // by BVH index, see neighbour()
   std::vector<ObjectRange> objects_;                      // touchable objects with triangles, by first_id
+  float typical_triangle_size_mm_ = 0.0f;
 };
 
 }  // namespace palpate

@@ -65,7 +65,7 @@ struct ProxyState {
   int constraint_count = 0;
   bool placed = false;      // false until reset() or the first step, which puts the proxy at the HIP
   int last_iterations = 0;  // steps the last tick took (for statistics and tests)
-  // Where its casts start in the BVH while it rests on a surface (gathered as it moves; see Bvh::first_hit).
+  // Where its casts start in the BVH (gathered as it moves, in free space too; see Bvh::first_hit).
   Bvh::Neighbourhood neighbourhood;
 
   bool in_contact() const noexcept { return constraint_count > 0; }
