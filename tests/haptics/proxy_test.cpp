@@ -253,6 +253,26 @@ TEST(ProxyOnThinPlate, AFastMoveThroughItIsStoppedOnTop) {
   expect_near(state.position_mm, glm::dvec3(c.hip_mm), 1e-12, "proxy");
 }
 
+// A sheet of 0.5 mm cells (z = 0, one-sided, its border at x = 10). Under it, the tip drags the proxy
+// along the top; then it jumps 1 mm in one tick to 0.8 mm past the border, more than a triangle
+// beyond the one the proxy rests on, so the proxy strides along the plane. There the plane holds
+// nothing up: the proxy is released at the tip.
+TEST(ProxyOnSheet, AStridePastItsBorderReleasesTheProxy) {
+  const Scene scene = scene_of("sheet", make_grid(20.0f, 40));
+  const Bvh bvh = Bvh::build(scene);
+  ProxyState state;
+  glm::dvec3 hip{5.3, 0.2, 3.0};
+  state.reset(glm::vec3(hip));
+  Contact c = move(state, bvh, hip, {5.3, 0.2, -0.5}, 10);
+  ASSERT_TRUE(c.in_contact());
+  c = move(state, bvh, hip, {9.8, 0.2, -0.5}, 30);
+  ASSERT_TRUE(c.in_contact());
+  expect_near(state.position_mm, {9.8, 0.2, eps}, 1e-6, "proxy on the sheet");
+  c = move(state, bvh, hip, {10.8, 0.2, -0.5}, 1);
+  EXPECT_FALSE(c.in_contact());
+  expect_near(state.position_mm, glm::dvec3(c.hip_mm), 1e-12, "proxy past the border");
+}
+
 TEST(ProxyAmongObjects, ReportsTheSceneIndexOfTheObjectTouched) {
   Scene scene;
   scene.objects.push_back({"ghost", make_box(glm::vec3(10.0f)), glm::mat4(1.0f), {}, {}});
