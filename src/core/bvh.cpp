@@ -97,12 +97,12 @@ glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, c
 
 std::size_t Bvh::memory_bytes() const noexcept {
   return nodes_.capacity() * sizeof(Node) + triangles_.capacity() * sizeof(Triangle) +
-         neighbours_.capacity() * sizeof(neighbours_[0]) + objects_.capacity() * sizeof(ObjectRange);
+         objects_.capacity() * sizeof(ObjectRange);
 }
 
-std::array<std::span<const std::byte>, 4> Bvh::memory() const noexcept {
+std::array<std::span<const std::byte>, 3> Bvh::memory() const noexcept {
   return {std::as_bytes(std::span(nodes_)), std::as_bytes(std::span(triangles_)),
-          std::as_bytes(std::span(neighbours_)), std::as_bytes(std::span(objects_))};
+          std::as_bytes(std::span(objects_))};
 }
 
 Bounds Bvh::bounds() const noexcept {
@@ -309,7 +309,7 @@ BvhHit Bvh::first_hit_around(const glm::dvec3& from, const glm::dvec3& to, std::
     }
     // Across the edge from the vertex to the next corner; the triangle there holds the vertex bit for
     // bit (the build shares world vertices).
-    current = neighbours_[current][std::size_t(at)];
+    current = triangles_[current].across[std::size_t(at)];
     if (current == no_neighbour) return {};
     const auto& corners = triangles_[current].vertices;
     at = corners[0] == centre ? 0 : corners[1] == centre ? 1 : 2;

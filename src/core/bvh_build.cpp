@@ -362,11 +362,13 @@ Bvh Bvh::build(const Scene& scene, ObjectMask included) {
   std::vector<std::uint32_t> primitive_of(refs.size());  // by scene-wide id
   for (std::size_t i = 0; i < refs.size(); ++i) {
     const std::uint32_t id = refs[i].id();
-    bvh.triangles_[i] = {{world[corners[3 * id]], world[corners[3 * id + 1]], world[corners[3 * id + 2]]},
-                         id};
+    bvh.triangles_[i] = {
+        {world[corners[3 * id]], world[corners[3 * id + 1]], world[corners[3 * id + 2]]}, id, {}};
     primitive_of[id] = std::uint32_t(i);
   }
-  find_neighbours(corners, world.size(), primitive_of, bvh.neighbours_);
+  std::vector<std::array<std::uint32_t, 3>> across;
+  find_neighbours(corners, world.size(), primitive_of, across);
+  for (std::size_t i = 0; i < across.size(); ++i) bvh.triangles_[i].across = across[i];
   bvh.typical_triangle_size_mm_ = median_longest_edge(bvh.triangles_);
   return bvh;
 }

@@ -5,9 +5,9 @@
 // give a bounded, allocation-free, cache-friendly query.
 //
 // Layout: one flat array of 32-byte nodes (two sibling children stored side by side, depth-first), and
-// the triangles copied into leaf order, 40 bytes each (three float vertices and an id), so a leaf's
-// triangles are one contiguous read, and for each the triangles across its edges (12 bytes). Built
-// top-down with a binned surface-area heuristic.
+// the triangles copied into leaf order, 52 bytes each (three float vertices, an id and the triangles
+// across its edges, so that crossing an edge reads no other array), so a leaf's triangles are one
+// contiguous read. Built top-down with a binned surface-area heuristic.
 //
 // build() allocates and may throw palpate::Error; every query is const, noexcept, allocation-free and
 // safe in the haptic tick, and safe to run from several threads at once.
@@ -63,9 +63,10 @@ class Bvh {
     glm::vec3 max;
     std::uint32_t count;  // leaf: triangle count (> 0); interior: 0
   };
-  struct Triangle {                     // 40 bytes
-    std::array<glm::vec3, 3> vertices;  // world mm, counter-clockwise seen from outside
-    std::uint32_t id;                   // the scene-wide triangle number (objects in scene order)
+  struct Triangle {                       // 52 bytes
+    std::array<glm::vec3, 3> vertices;    // world mm, counter-clockwise seen from outside
+    std::uint32_t id;                     // the scene-wide triangle number (objects in scene order)
+    std::array<std::uint32_t, 3> across;  // the triangles across its edges: see neighbour()
   };
 
   // Deepest possible leaf (the build splits at the median below depth 48): the queries' stack size.
@@ -85,10 +86,10 @@ class Bvh {
   // Whether the tree holds triangles of scene object `object`.
   bool contains(int object) const noexcept;
   std::size_t node_count() const noexcept { return nodes_.size(); }
-  // Bytes held by the nodes, the triangles, their neighbours and the object table.
+  // Bytes held by the nodes, the triangles and the object table.
   std::size_t memory_bytes() const noexcept;
   // Those arrays, for a caller that locks them in memory (HapticLoop does).
-  std::array<std::span<const std::byte>, 4> memory() const noexcept;
+  std::array<std::span<const std::byte>, 3> memory() const noexcept;
   // The padded bounds of everything; zero for an empty tree.
   Bounds bounds() const noexcept;
   // The median longest edge of an even sample of the triangles (0 for an empty tree): the scale of the
@@ -197,7 +198,7 @@ class Bvh {
   // edge, or vertices split by the mesh, as on flat-shaded faces).
   static constexpr std::uint32_t no_neighbour = 0xffffffffu;
   std::uint32_t neighbour(std::uint32_t primitive, int edge) const noexcept {
-    return neighbours_[primitive][std::size_t(edge)];
+    return triangles_[primitive].across[std::size_t(edge)];
   }
   // Where a BVH triangle comes from in the scene.
   struct Location {
@@ -231,8 +232,7 @@ class Bvh {
 
   std::vector<Node> nodes_;
   std::vector<Triangle> triangles_;
-  std::vector<std::array<std::uint32_t, 3>> neighbours_;  // by BVH index, see neighbour()
-  std::vector<ObjectRange> objects_;                      // touchable objects with triangles, by first_id
+  std::vector<ObjectRange> objects_;  // touchable objects with triangles, by first_id
   float typical_triangle_size_mm_ = 0.0f;
 };
 
