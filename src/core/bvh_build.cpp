@@ -6,7 +6,6 @@
 #include <bit>
 #include <cmath>
 #include <glm/common.hpp>
-#include <glm/geometric.hpp>
 #include <glm/mat4x4.hpp>
 #include <limits>
 #include <string>
@@ -204,11 +203,10 @@ std::uint32_t split_at_median(Reference* refs, std::uint32_t count, const Box& c
 }
 
 // The triangle across each edge of each triangle (see Bvh::neighbour), given their corners' vertices
-// by scene-wide id, into `across` by BVH index: through a table of the triangles around each vertex,
-// in linear time and in the mesh's order, where neighbours are near in memory.
+// by scene-wide id, into each BVH triangle's `across`: through a table of the triangles around each
+// vertex, in linear time and in the mesh's order, where neighbours are near in memory.
 void find_neighbours(const std::vector<std::uint32_t>& corners, std::size_t vertex_count,
-                     const std::vector<std::uint32_t>& primitive_of,
-                     std::vector<std::array<std::uint32_t, 3>>& across) {
+                     const std::vector<std::uint32_t>& primitive_of, std::vector<Bvh::Triangle>& triangles) {
   // start[v] counts the uses of vertices up to v, then, filled backwards, where v's list begins.
   std::vector<std::uint32_t> start(vertex_count + 1, 0);
   for (const std::uint32_t v : corners) ++start[v];
@@ -216,7 +214,6 @@ void find_neighbours(const std::vector<std::uint32_t>& corners, std::size_t vert
   std::vector<std::uint32_t> around(corners.size());  // the triangles using each vertex
   for (std::size_t k = 0; k < corners.size(); ++k) around[--start[corners[k]]] = std::uint32_t(k / 3);
 
-  across.resize(primitive_of.size());
   for (std::size_t t = 0; t < primitive_of.size(); ++t) {
     for (std::size_t e = 0; e < 3; ++e) {
       const std::uint32_t a = corners[3 * t + e], b = corners[3 * t + (e + 1) % 3];
@@ -232,7 +229,7 @@ void find_neighbours(const std::vector<std::uint32_t>& corners, std::size_t vert
           if (v[(m + 1) % 3] == a) found = u;
         }
       }
-      across[primitive_of[t]][e] =
+      triangles[primitive_of[t]].across[e] =
           sharing == 1 && found != Bvh::no_neighbour ? primitive_of[found] : Bvh::no_neighbour;
     }
   }
@@ -243,11 +240,8 @@ float median_longest_edge(const std::vector<Bvh::Triangle>& triangles) {
   if (triangles.empty()) return 0.0f;
   const std::size_t stride = std::max<std::size_t>(1, triangles.size() / 1024);
   std::vector<float> longest;
-  for (std::size_t i = 0; i < triangles.size(); i += stride) {
-    const auto& v = triangles[i].vertices;
-    longest.push_back(
-        std::max({glm::distance(v[0], v[1]), glm::distance(v[1], v[2]), glm::distance(v[2], v[0])}));
-  }
+  for (std::size_t i = 0; i < triangles.size(); i += stride)
+    longest.push_back(triangles[i].longest_edge_mm());
   const auto middle = longest.begin() + std::ptrdiff_t(longest.size() / 2);
   std::nth_element(longest.begin(), middle, longest.end());
   return *middle;
@@ -366,9 +360,7 @@ Bvh Bvh::build(const Scene& scene, ObjectMask included) {
         {world[corners[3 * id]], world[corners[3 * id + 1]], world[corners[3 * id + 2]]}, id, {}};
     primitive_of[id] = std::uint32_t(i);
   }
-  std::vector<std::array<std::uint32_t, 3>> across;
-  find_neighbours(corners, world.size(), primitive_of, across);
-  for (std::size_t i = 0; i < across.size(); ++i) bvh.triangles_[i].across = across[i];
+  find_neighbours(corners, world.size(), primitive_of, bvh.triangles_);
   bvh.typical_triangle_size_mm_ = median_longest_edge(bvh.triangles_);
   return bvh;
 }

@@ -136,13 +136,8 @@ void keep_neighbourhood(Bvh::Neighbourhood& near, const Bvh& bvh, std::uint32_t 
   const glm::dvec3 half_width = 0.5 * (glm::dvec3(near.high) - glm::dvec3(near.low));
   const glm::dvec3 offset = glm::abs(p - 0.5 * (glm::dvec3(near.high) + glm::dvec3(near.low)));
   if (bvh.gathered_here(near) && glm::all(glm::lessThanEqual(offset, 0.5 * half_width))) return;
-  float size = bvh.typical_triangle_size_mm();
-  if (face != Bvh::no_neighbour) {
-    const Bvh::Triangle& tri = bvh.triangle(face);
-    size = std::max({glm::distance(tri.vertices[0], tri.vertices[1]),
-                     glm::distance(tri.vertices[1], tri.vertices[2]),
-                     glm::distance(tri.vertices[2], tri.vertices[0])});
-  }
+  const float size =
+      face != Bvh::no_neighbour ? bvh.triangle(face).longest_edge_mm() : bvh.typical_triangle_size_mm();
   const float half = std::max(float(neighbourhood_faces) * size, float(min_neighbourhood_mm));
   bvh.gather(near, glm::vec3(p) - half, glm::vec3(p) + half);
 }

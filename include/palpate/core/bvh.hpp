@@ -11,11 +11,13 @@
 //
 // build() allocates and may throw palpate::Error; every query is const, noexcept, allocation-free and
 // safe in the haptic tick, and safe to run from several threads at once.
+#include <algorithm>
 #include <array>
 #include <cstddef>
 #include <cstdint>
 #include <functional>
 #include <glm/common.hpp>
+#include <glm/geometric.hpp>
 #include <glm/vec3.hpp>
 #include <span>
 #include <vector>
@@ -67,6 +69,11 @@ class Bvh {
     std::array<glm::vec3, 3> vertices;    // world mm, counter-clockwise seen from outside
     std::uint32_t id;                     // the scene-wide triangle number (objects in scene order)
     std::array<std::uint32_t, 3> across;  // the triangles across its edges: see neighbour()
+
+    float longest_edge_mm() const noexcept {
+      return std::max({glm::distance(vertices[0], vertices[1]), glm::distance(vertices[1], vertices[2]),
+                       glm::distance(vertices[2], vertices[0])});
+    }
   };
 
   // Deepest possible leaf (the build splits at the median below depth 48): the queries' stack size.
