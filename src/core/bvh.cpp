@@ -309,7 +309,7 @@ BvhHit Bvh::first_hit_around(const glm::dvec3& from, const glm::dvec3& to, std::
     }
     // Across the edge from the vertex to the next corner; the triangle there holds the vertex bit for
     // bit (the build shares world vertices).
-    current = triangles_[current].across[std::size_t(at)];
+    current = neighbour(current, at);
     if (current == no_neighbour) return {};
     const auto& corners = triangles_[current].vertices;
     at = corners[0] == centre ? 0 : corners[1] == centre ? 1 : 2;
