@@ -357,11 +357,12 @@ Bvh Bvh::build(const Scene& scene, ObjectMask included) {
   for (std::size_t i = 0; i < refs.size(); ++i) {
     const std::uint32_t id = refs[i].id();
     bvh.triangles_[i] = {
-        {world[corners[3 * id]], world[corners[3 * id + 1]], world[corners[3 * id + 2]]}, id, {}};
+        {world[corners[3 * id]], world[corners[3 * id + 1]], world[corners[3 * id + 2]]}, id, {}, 0.0f};
     primitive_of[id] = std::uint32_t(i);
   }
   find_neighbours(corners, world.size(), primitive_of, bvh.triangles_);
   bvh.typical_triangle_size_mm_ = median_longest_edge(bvh.triangles_);
+  bvh.measure_clearances();
   return bvh;
 }
 

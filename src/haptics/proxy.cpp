@@ -298,7 +298,11 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
       }
       const glm::dvec3 path = goal - p;
       if (glm::dot(path, path) > 1e-24) {  // 1e-12 mm
-        const BvhHit hit = bvh.first_hit(p, goal, Faces::front, tolerance, touchable, near);
+        // Above its own face, in the space no other triangle enters (the walks of a slide), nothing
+        // can be in the way: no cast.
+        const BvhHit hit = count > 0 && bvh.clear_above(c[0].primitive, p, goal)
+                               ? BvhHit{}
+                               : bvh.first_hit(p, goal, Faces::front, tolerance, touchable, near);
         if (hit.hit()) {
           c[count++] = stop_before(hit, goal);
           handed_over = false;

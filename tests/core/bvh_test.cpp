@@ -164,7 +164,7 @@ TEST(Bvh, EveryTriangleSitsInExactlyOneLeafInsideEveryBoxAbove) {
   // Compact: nodes and triangles together stay well under 100 bytes per triangle.
   EXPECT_LT(double(bvh.memory_bytes()) / double(bvh.triangle_count()), 100.0);
   EXPECT_EQ(sizeof(Bvh::Node), 32u);
-  EXPECT_EQ(sizeof(Bvh::Triangle), 52u);
+  EXPECT_EQ(sizeof(Bvh::Triangle), 56u);
 }
 
 TEST(Bvh, SegmentCastMatchesBruteForce) {

@@ -5,9 +5,9 @@
 // give a bounded, allocation-free, cache-friendly query.
 //
 // Layout: one flat array of 32-byte nodes (two sibling children stored side by side, depth-first), and
-// the triangles copied into leaf order, 52 bytes each (three float vertices, an id and the triangles
-// across its edges, so that crossing an edge reads no other array), so a leaf's triangles are one
-// contiguous read. Built top-down with a binned surface-area heuristic.
+// the triangles copied into leaf order, 56 bytes each (three float vertices, an id, the triangles
+// across its edges, so that crossing an edge reads no other array, and the clear space above it), so a
+// leaf's triangles are one contiguous read. Built top-down with a binned surface-area heuristic.
 //
 // build() allocates and may throw palpate::Error; every query is const, noexcept, allocation-free and
 // safe in the haptic tick, and safe to run from several threads at once.
@@ -65,10 +65,11 @@ class Bvh {
     glm::vec3 max;
     std::uint32_t count;  // leaf: triangle count (> 0); interior: 0
   };
-  struct Triangle {                       // 52 bytes
+  struct Triangle {                       // 56 bytes
     std::array<glm::vec3, 3> vertices;    // world mm, counter-clockwise seen from outside
     std::uint32_t id;                     // the scene-wide triangle number (objects in scene order)
     std::array<std::uint32_t, 3> across;  // the triangles across its edges: see neighbour()
+    float clearance_mm;                   // how high above it no other triangle comes: see clear_above()
 
     float longest_edge_mm() const noexcept {
       return std::max({glm::distance(vertices[0], vertices[1]), glm::distance(vertices[1], vertices[2]),
@@ -139,6 +140,16 @@ class Bvh {
   BvhHit first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces = Faces::front,
                    double start_tolerance_mm = 0.0, ObjectMask seen = {},
                    const Neighbourhood* near = nullptr) const noexcept;
+
+  // Whether the segment from -> to lies in the space above triangle `primitive` that no other triangle
+  // of the tree enters, so that no cast along it can hit anything: the proxy's walks over its own face
+  // then need none. That space, measured at build, rises from a millionth of the triangle's longest
+  // edge above its plane up to `clearance_mm` (at most a tenth of that edge, less over a sharp corner),
+  // between sides slanted 45 degrees outward from its edges: a proxy handed over an edge from a face
+  // bent down by less than 45 degrees starts inside it, and faces folded up beyond an edge by less than
+  // 45 degrees stay outside it. False whenever in doubt (within a ten-millionth of that edge of the
+  // space's bounds).
+  bool clear_above(std::uint32_t primitive, const glm::dvec3& from, const glm::dvec3& to) const noexcept;
 
   // The first of the triangles around the corner of triangle `primitive` at `vertex` that the segment
   // crosses (tested as first_hit tests them; ties to the lowest index), found by going round the vertex
@@ -233,6 +244,8 @@ class Bvh {
   };
 
   BvhHit make_hit(std::uint32_t primitive, const glm::dvec3& point) const noexcept;
+  // Fills each triangle's clearance_mm (bvh_clearance.cpp).
+  void measure_clearances();
   template <bool ask_first, class Accepted>
   BvhHit closest_point_if(const glm::dvec3& point, double max_distance_mm,
                           const Accepted& accepted) const noexcept;
