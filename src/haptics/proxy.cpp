@@ -119,23 +119,29 @@ bool supported(const Bvh& bvh, const Candidate* c, int count, const glm::dvec3& 
   return true;
 }
 
-// The proxy's neighbourhood in the BVH: a box 0.7 of its face's sizes either side, gathered again once
-// the proxy has moved half that far (every 2 to 40 ticks on sphere-slide, 10 M to 23 K triangles,
-// about 0.35 µs each time). Its casts then test the 6-14 leaves listed there side by side instead of
-// walking the tree's chain of dependent box tests (docs/design.md, "The haptic tick's memory and
-// time"). Smaller boxes gather more often and larger ones list more leaves: 0.65-0.8 measured best,
-// 0.3 and 1.8 worse.
+// The proxy's neighbourhood in the BVH: a box 0.7 of its face's sizes either side (every 2 to 40 ticks
+// on sphere-slide, 10 M to 23 K triangles, about 0.35 µs each time). Its casts then test the 6-14
+// leaves listed there side by side instead of walking the tree's chain of dependent box tests
+// (docs/design.md, "The haptic tick's memory and time"). Smaller boxes gather more often and larger
+// ones list more leaves: 0.65-0.8 measured best, 0.3 and 1.8 worse.
 constexpr double neighbourhood_faces = 0.7;
 constexpr double min_neighbourhood_mm = 0.05;
+// Gathered again where it costs least: at the end of a tick of one step (the light ones) once the
+// proxy has moved half the box's half-width from its centre, and at a tick's start only once it has
+// left the box. With its walks cast-free (Bvh::clear_above), what a sliding proxy asks the tree is
+// mostly the faces-near query of a tick of several steps, a heavy one; gathering at every tick's
+// start put a gather in most of those.
+constexpr double regather_after_light_tick = 0.5;
+constexpr double regather_before_tick = 1.0;
 
 // A free proxy (`face` no_neighbour) keeps one too, sized by the tree's typical triangle, so that the
 // tick in which it meets the surface casts among leaves: from the root, that tick's two casts read
 // parts of the tree untouched since the last contact, and made it a touch's slowest.
-void keep_neighbourhood(Bvh::Neighbourhood& near, const Bvh& bvh, std::uint32_t face,
-                        const glm::dvec3& p) noexcept {
+void keep_neighbourhood(Bvh::Neighbourhood& near, const Bvh& bvh, std::uint32_t face, const glm::dvec3& p,
+                        double regather_share) noexcept {
   const glm::dvec3 half_width = 0.5 * (glm::dvec3(near.high) - glm::dvec3(near.low));
   const glm::dvec3 offset = glm::abs(p - 0.5 * (glm::dvec3(near.high) + glm::dvec3(near.low)));
-  if (bvh.gathered_here(near) && glm::all(glm::lessThanEqual(offset, 0.5 * half_width))) return;
+  if (bvh.gathered_here(near) && glm::all(glm::lessThanEqual(offset, regather_share * half_width))) return;
   const float size =
       face != Bvh::no_neighbour ? bvh.triangle(face).longest_edge_mm() : bvh.typical_triangle_size_mm();
   const float half = std::max(float(neighbourhood_faces) * size, float(min_neighbourhood_mm));
@@ -197,7 +203,8 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
       c[count++] = {k.normal, k.offset_mm, k.primitive, k.multiplier_mm};
   }
   glm::dvec3 p = state.position_mm;
-  keep_neighbourhood(state.neighbourhood, bvh, count > 0 ? c[0].primitive : Bvh::no_neighbour, p);
+  keep_neighbourhood(state.neighbourhood, bvh, count > 0 ? c[0].primitive : Bvh::no_neighbour, p,
+                     regather_before_tick);
   const Bvh::Neighbourhood* near = &state.neighbourhood;
   // The last face met, for the contact when the segment cap cuts a search short.
   std::uint32_t last_primitive = count > 0 ? c[0].primitive : 0;
@@ -373,6 +380,10 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
 
   state.position_mm = p;
   state.last_iterations = iteration;
+  if (iteration == 1) {
+    keep_neighbourhood(state.neighbourhood, bvh, count > 0 ? c[0].primitive : Bvh::no_neighbour, p,
+                       regather_after_light_tick);
+  }
   // Keep at most three planes (the solve keeps no more; a capped tick may end with a fourth).
   const int first = std::max(0, count - 3);
   state.constraint_count = count - first;
