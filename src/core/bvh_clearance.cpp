@@ -16,9 +16,10 @@ namespace palpate {
 namespace {
 
 // The space's floor and ceiling and the query's margin, in shares of the triangle's longest edge: the
-// floor lies below any height a proxy floats at and above the rounding of the neighbours' shared
-// vertices; the ceiling is far above the proxy's surface epsilon on any mesh it can feel; the margin
-// is far above the rounding between build and tick.
+// floor lies below the height a proxy floats at (its default surface epsilon, 1 µm, on edges shorter
+// than about a metre) and above the rounding of the neighbours' shared vertices; the ceiling lies
+// above it on edges longer than about 10 µm; the margin is far above the rounding between build and
+// tick.
 constexpr double floor_share = 1e-6;
 constexpr double ceiling_share = 0.1;
 constexpr double margin_share = 1e-7;
