@@ -30,8 +30,10 @@ constexpr double margin_share = 1e-7;
 struct Frame {
   glm::dvec3 origin{0.0}, normal{0.0};
   std::array<glm::dvec3, 3> corner{}, outward{};
-  double longest = 0.0;
-  bool valid = false;  // false for a zero-area triangle: no space above it is trusted
+  double longest = 0.0;  // 0 for a zero-area triangle
+
+  // False for a zero-area triangle: no space above it is trusted.
+  bool valid() const noexcept { return longest > 0.0; }
 
   double height(const glm::dvec3& x) const noexcept { return glm::dot(normal, x - origin); }
   // Positive outside the slanted side of edge e.
@@ -54,7 +56,6 @@ Frame frame_of(const Bvh::Triangle& tri) noexcept {
     f.outward[e] = glm::cross(edge, f.normal) / length;  // |edge x normal| = |edge|: already unit
     f.longest = std::max(f.longest, length);
   }
-  f.valid = f.longest > 0.0;
   return f;
 }
 
@@ -69,17 +70,17 @@ double sharpest_corner(const Frame& f) noexcept {
   return sharpest;
 }
 
-// The space's ceiling: a tenth of the longest edge, lower over a sharp corner so that the space
-// reaches no more than a quarter of that edge beyond it.
-double ceiling_of(const Frame& f) noexcept {
-  return f.longest * std::min(ceiling_share, 0.25 * sharpest_corner(f));
-}
-
-// How far the space reaches beyond the triangle in any coordinate: sideways the ceiling over the
-// sharpest corner's half-angle sine, up the ceiling. Zero for a corner of no angle (no space).
-double reach_of(const Frame& f) noexcept {
+// The space's ceiling, a tenth of the longest edge, lower over a sharp corner so that the space reaches
+// no more than a quarter of that edge beyond it; and how far the space reaches beyond the triangle in
+// any coordinate: sideways the ceiling over the sharpest corner's half-angle sine, up the ceiling. No
+// reach for a corner of no angle (no space).
+struct Extent {
+  double ceiling, reach;
+};
+Extent extent_of(const Frame& f) noexcept {
   const double sharpest = sharpest_corner(f);
-  return sharpest > 0.0 ? ceiling_of(f) / sharpest + ceiling_of(f) : 0.0;
+  const double ceiling = f.longest * std::min(ceiling_share, 0.25 * sharpest);
+  return {ceiling, sharpest > 0.0 ? ceiling / sharpest + ceiling : 0.0};
 }
 
 // The lowest height at which triangle `other` enters the space above `f` between `floor` and
@@ -99,16 +100,10 @@ double lowest_inside(const Frame& f, const std::array<glm::dvec3, 3>& other, dou
   };
   // Most triangles near a face lie wholly outside one of the five (below the floor, on a convex
   // surface; beyond a side, on a concave one): no clipping for those.
-  std::array<double, 3> height;
-  for (std::size_t i = 0; i < 3; ++i) height[i] = f.height(other[i]);
-  if (std::max({height[0], height[1], height[2]}) <= floor + inset ||
-      std::min({height[0], height[1], height[2]}) >= ceiling)
-    return ceiling;
-  for (std::size_t e = 0; e < 3; ++e) {
-    const auto beyond = [&](std::size_t i) {
-      return glm::dot(f.outward[e], other[i] - f.corner[e]) - height[i] + inset;
-    };
-    if (beyond(0) >= 0.0 && beyond(1) >= 0.0 && beyond(2) >= 0.0) return ceiling;
+  for (int k = 0; k < planes; ++k) {
+    bool all_outside = true;
+    for (std::size_t i = 0; i < 3 && all_outside; ++i) all_outside = outside(k, other[i]) >= 0.0;
+    if (all_outside) return ceiling;
   }
   std::array<glm::dvec3, 3 + planes> polygon, clipped;
   int size = 3;
@@ -147,12 +142,15 @@ void Bvh::measure_clearances() {
   for (std::size_t first = 0; first < triangles_.size(); first += group) {
     const std::size_t count = std::min(group, triangles_.size() - first);
     std::array<Frame, group> frames;
+    std::array<double, group> ceilings;
     std::array<glm::vec3, group> lows, highs;
     glm::vec3 low(std::numeric_limits<float>::max()), high(-std::numeric_limits<float>::max());
     for (std::size_t k = 0; k < count; ++k) {
       const Triangle& tri = triangles_[first + k];
       frames[k] = frame_of(tri);
-      const float reach = float(1.01 * reach_of(frames[k]));  // a little more for rounding
+      const Extent extent = extent_of(frames[k]);
+      ceilings[k] = extent.ceiling;
+      const float reach = float(1.01 * extent.reach);  // a little more for rounding
       lows[k] = glm::min(glm::min(tri.vertices[0], tri.vertices[1]), tri.vertices[2]) - reach;
       highs[k] = glm::max(glm::max(tri.vertices[0], tri.vertices[1]), tri.vertices[2]) + reach;
       low = glm::min(low, lows[k]);
@@ -170,9 +168,9 @@ void Bvh::measure_clearances() {
       const Frame& f = frames[k];
       Triangle& tri = triangles_[first + k];
       tri.clearance_mm = 0.0f;
-      if (!f.valid) continue;
+      if (!f.valid()) continue;
       const double floor = floor_share * f.longest;
-      double clearance = ceiling_of(f);
+      double clearance = ceilings[k];
       for (const Nearby& other : nearby) {
         if (other.primitive == first + k || !boxes_meet(other.low, other.high, lows[k], highs[k])) continue;
         clearance = lowest_inside(f, other.corners, floor, clearance);
@@ -189,7 +187,7 @@ void Bvh::measure_clearances() {
 bool Bvh::clear_above(std::uint32_t primitive, const glm::dvec3& from, const glm::dvec3& to) const noexcept {
   const Triangle& tri = triangles_[primitive];
   const Frame f = frame_of(tri);
-  if (!f.valid) return false;
+  if (!f.valid()) return false;
   const double margin = margin_share * f.longest;
   const double low = floor_share * f.longest + margin, high = double(tri.clearance_mm) - margin;
   for (const glm::dvec3* x : {&from, &to}) {

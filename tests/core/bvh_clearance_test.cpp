@@ -12,6 +12,7 @@
 #include "palpate/core/bvh.hpp"
 #include "palpate/core/phantom.hpp"
 #include "palpate/core/shapes.hpp"
+#include "palpate/testing/reference_geometry.hpp"
 
 namespace palpate {
 namespace {
@@ -34,20 +35,10 @@ Mesh triangle_mesh(glm::vec3 a, glm::vec3 b, glm::vec3 c) {
 // Reference: whether the segment meets any triangle of the tree, either face (Moller-Trumbore over
 // every triangle, an algorithm apart from the tree's cast).
 bool brute_meets(const Bvh& bvh, const glm::dvec3& from, const glm::dvec3& to) {
-  const glm::dvec3 d = to - from;
   for (std::uint32_t i = 0; i < bvh.triangle_count(); ++i) {
     const auto& v = bvh.triangle(i).vertices;
-    const glm::dvec3 a(v[0]), e1 = glm::dvec3(v[1]) - a, e2 = glm::dvec3(v[2]) - a;
-    const glm::dvec3 pv = glm::cross(d, e2);
-    const double det = glm::dot(e1, pv);
-    if (det == 0.0) continue;
-    const glm::dvec3 tv = from - a;
-    const double u = glm::dot(tv, pv) / det;
-    if (u < 0.0 || u > 1.0) continue;
-    const glm::dvec3 qv = glm::cross(tv, e1);
-    const double w = glm::dot(d, qv) / det;
-    const double t = glm::dot(e2, qv) / det;
-    if (w >= 0.0 && u + w <= 1.0 && t >= 0.0 && t <= 1.0) return true;
+    if (testing::segment_meets_triangle(from, to, glm::dvec3(v[0]), glm::dvec3(v[1]), glm::dvec3(v[2])))
+      return true;
   }
   return false;
 }
