@@ -55,8 +55,8 @@ TEST_F(ProxyOnCube, FollowsTheHipInFreeSpace) {
 }
 
 // Free, it keeps the leaves around itself (a box 0.7 typical triangles wide either side) so that the
-// tick that meets the surface casts among them; far from everything the box is empty. (Each tick
-// gathers around where the proxy starts it.)
+// tick that meets the surface casts among them; far from everything the box is empty. (A tick of one
+// step gathers around where the proxy ends it.)
 TEST_F(ProxyOnCube, KeepsTheLeavesAroundItInFreeSpace) {
   move(state, bvh, hip, {3.0, -4.0, 200.0}, 2);
   EXPECT_EQ(state.neighbourhood.count, 0);
