@@ -69,6 +69,7 @@ void BM_TickSphereSlide(benchmark::State& state) {
   std::uint64_t tick = 0, contacts = 0;
   for (auto _ : state) {
     const TickResult result = pipeline.tick(tick, double(tick) * testing::tick_s);
+    pipeline.prepare_next_tick();
     benchmark::DoNotOptimize(result);
     contacts += result.contact.in_contact();
     ++tick;

@@ -112,6 +112,7 @@ void HapticLoop::run_period() noexcept {
   const bool missed = end_ns > period_end_ns;
   stats_.record_tick(start_ns, end_ns, missed, result.invalid_input, first_of_run_);
   first_of_run_ = false;
+  pipeline_.prepare_next_tick();  // in the period's slack: the force is already out
   ++next_tick_;
   // After a miss, start at once on the latest grid point passed: no burst of catch-up ticks.
   period_start_ns_ =

@@ -119,20 +119,19 @@ bool supported(const Bvh& bvh, const Candidate* c, int count, const glm::dvec3& 
   return true;
 }
 
-// The proxy's neighbourhood in the BVH: a box 0.7 of its face's sizes either side (every 2 to 40 ticks
-// on sphere-slide, 10 M to 23 K triangles, about 0.35 µs each time). Its casts then test the 6-14
+// The proxy's neighbourhood in the BVH: a box 0.7 of its face's sizes either side (0.26 µs at the
+// median and 1.5 µs at p99 at 10 M triangles, between ticks). Its casts then test the 6-14
 // leaves listed there side by side instead of walking the tree's chain of dependent box tests
 // (docs/design.md, "The haptic tick's memory and time"). Smaller boxes gather more often and larger
 // ones list more leaves: 0.65-0.8 measured best, 0.3 and 1.8 worse.
 constexpr double neighbourhood_faces = 0.7;
 constexpr double min_neighbourhood_mm = 0.05;
-// Gathered again where it costs least: at the end of a tick of one step (the light ones) once the
-// proxy has moved half the box's half-width from its centre, and at a tick's start only once it has
-// left the box. With its walks cast-free (Bvh::clear_above), what a sliding proxy asks the tree is
-// mostly the faces-near query of a tick of several steps, a heavy one; gathering at every tick's
-// start put a gather in most of those.
-constexpr double regather_after_light_tick = 0.5;
-constexpr double regather_before_tick = 1.0;
+// Gathered again between ticks (proxy_prepare) once the proxy is a quarter of the box's half-width
+// from its centre, so that a tick's motion keeps it inside (25 um on sphere-slide, a third of the
+// half-width at 10 M triangles, where it is gathered nearly every tick); within a tick only once it
+// has left the box.
+constexpr double regather_between_ticks = 0.25;
+constexpr double regather_in_tick = 1.0;
 
 // A free proxy (`face` no_neighbour) keeps one too, sized by the tree's typical triangle, so that the
 // tick in which it meets the surface casts among leaves: from the root, that tick's two casts read
@@ -204,7 +203,7 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   }
   glm::dvec3 p = state.position_mm;
   keep_neighbourhood(state.neighbourhood, bvh, count > 0 ? c[0].primitive : Bvh::no_neighbour, p,
-                     regather_before_tick);
+                     regather_in_tick);
   const Bvh::Neighbourhood* near = &state.neighbourhood;
   // The last face met, for the contact when the segment cap cuts a search short.
   std::uint32_t last_primitive = count > 0 ? c[0].primitive : 0;
@@ -380,10 +379,6 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
 
   state.position_mm = p;
   state.last_iterations = iteration;
-  if (iteration == 1) {
-    keep_neighbourhood(state.neighbourhood, bvh, count > 0 ? c[0].primitive : Bvh::no_neighbour, p,
-                       regather_after_light_tick);
-  }
   // Keep at most three planes (the solve keeps no more; a capped tick may end with a fourth).
   const int first = std::max(0, count - 3);
   state.constraint_count = count - first;
@@ -418,6 +413,12 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   }
   contact.depth_mm = float(depth);
   return contact;
+}
+
+void proxy_prepare(ProxyState& state, const Bvh& bvh) noexcept {
+  if (!state.placed) return;
+  const std::uint32_t face = state.constraint_count > 0 ? state.constraints[0].primitive : Bvh::no_neighbour;
+  keep_neighbourhood(state.neighbourhood, bvh, face, state.position_mm, regather_between_ticks);
 }
 
 }  // namespace palpate

@@ -174,6 +174,8 @@ ScenarioResult run_scenario(const Scene& scene, const Bvh& bvh, std::span<const 
   }
   result.free_tick_us.reserve(total);
   result.contact_tick_us.reserve(total);
+  result.free_between_us.reserve(total);
+  result.contact_between_us.reserve(total);
   if (oracle) result.counts = ScenarioCounts{};
   DeviceLimits limits;
   limits.max_force_n = max_force_n;
@@ -191,9 +193,14 @@ ScenarioResult run_scenario(const Scene& scene, const Bvh& bvh, std::span<const 
       const auto start = std::chrono::steady_clock::now();
       ticks[k] = pipeline.tick(k, samples[k].time_s);
       const auto end = std::chrono::steady_clock::now();
+      pipeline.prepare_next_tick();
+      const auto prepared = std::chrono::steady_clock::now();
       iterations[k] = pipeline.proxy_state().last_iterations;
-      const double us = std::chrono::duration<double, std::micro>(end - start).count();
-      (ticks[k].contact.in_contact() ? result.contact_tick_us : result.free_tick_us).push_back(us);
+      const bool contact = ticks[k].contact.in_contact();
+      (contact ? result.contact_tick_us : result.free_tick_us)
+          .push_back(std::chrono::duration<double, std::micro>(end - start).count());
+      (contact ? result.contact_between_us : result.free_between_us)
+          .push_back(std::chrono::duration<double, std::micro>(prepared - end).count());
     }
     if (!oracle) continue;
     ScenarioCounts& counts = *result.counts;

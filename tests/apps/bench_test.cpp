@@ -46,6 +46,7 @@ TEST(BenchCommand, HapticsAtItsSmallestReportsCleanCountsAndARate) {
     EXPECT_GT(row["triangles"].get<int>(), 0) << what;
     EXPECT_GT(row["ticks"].get<int>(), 0) << what;
     expect_ordered(row["tick_us"], what);
+    expect_ordered(row["between_us"], what + " between ticks");
     EXPECT_GT(row["tick_mean_us"].get<double>(), 0.0) << what;
     EXPECT_LE(row["tick_mean_us"].get<double>(), row["tick_us"]["max"].get<double>()) << what;
     const auto& host = row["host_interruptions"];

@@ -8,6 +8,7 @@
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
+#include <glm/vector_relational.hpp>
 #include <limits>
 #include <vector>
 
@@ -226,6 +227,34 @@ TEST(HapticPipelineTest, ForceAndVelocityGoThroughTheDeviceFrame) {
   EXPECT_NEAR(device.last_force().y, result.force_n.z, 1e-4f);
   EXPECT_NEAR(device.last_force().x, 0.0f, 1e-4f);
   EXPECT_NEAR(device.last_force().z, 0.0f, 1e-4f);
+}
+
+// Between ticks the pipeline readies the proxy for the next one: sliding over the stiff cube's top,
+// after each prepare_next_tick() the proxy lies within a quarter of its neighbourhood's half-width of
+// the box's centre (regathered around it once it strays further).
+TEST(HapticPipelineTest, BetweenTicksTheNeighbourhoodIsRegatheredAroundTheProxy) {
+  const Scene scene = two_cubes();
+  const Bvh bvh = Bvh::build(scene);
+  ScriptedDevice device(
+      SampledPath({{0.0, {22.0f, -8.0f, 12.0f}}, {0.05, {22.0f, -8.0f, 9.0f}}, {0.5, {38.0f, 8.0f, 9.0f}}}),
+      false);
+  HapticPipeline pipeline(device, scene, bvh);
+  int contact_ticks = 0, regathered = 0;
+  for (int k = 0; k < 500; ++k) {
+    const TickResult result = pipeline.tick(std::uint64_t(k), k * 1e-3);
+    const Bvh::Neighbourhood& near = pipeline.proxy_state().neighbourhood;
+    const glm::vec3 box_before = near.low;
+    pipeline.prepare_next_tick();
+    if (!result.contact.in_contact()) continue;
+    ++contact_ticks;
+    regathered += near.low != box_before;
+    const glm::dvec3 half = 0.5 * (glm::dvec3(near.high) - glm::dvec3(near.low));
+    const glm::dvec3 off =
+        glm::abs(pipeline.proxy_state().position_mm - 0.5 * (glm::dvec3(near.high) + glm::dvec3(near.low)));
+    EXPECT_TRUE(glm::all(glm::lessThanEqual(off, 0.25 * half))) << "tick " << k;
+  }
+  EXPECT_GT(contact_ticks, 400);
+  EXPECT_GT(regathered, 0);
 }
 
 TEST(DeviceTransformTest, MapsPointsVelocitiesAndForces) {

@@ -37,6 +37,10 @@ class HapticPipeline {
                  const DeviceTransform& device_to_scene = {}, const ProxyParams& proxy = {});
 
   TickResult tick(std::uint64_t tick, double time_s) noexcept;
+  // Between ticks, once the result is out: readies the proxy for the next tick (proxy_prepare), off
+  // the path from device read to force. HapticLoop calls it after each tick; a caller of tick() that
+  // skips it gets the same forces, from some slower ticks.
+  void prepare_next_tick() noexcept { proxy_prepare(proxy_state_, bvh_); }
 
   // From the next tick on, object `object` feels like `material` (stiffness, damping, touchability; an
   // object the BVH does not hold stays untouchable). No allocation; ignored for an index out of range.

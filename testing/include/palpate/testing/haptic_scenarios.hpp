@@ -74,13 +74,16 @@ std::vector<SampledPath> surface_press_slides(const Scene& scene, std::size_t ob
                                               const MeshOracle& oracle, const CycleShape& shape);
 
 struct ScenarioResult {
-  std::vector<double> free_tick_us;      // ticks that ended out of contact
-  std::vector<double> contact_tick_us;   // ticks that ended in contact
+  std::vector<double> free_tick_us;     // ticks that ended out of contact
+  std::vector<double> contact_tick_us;  // ticks that ended in contact
+  // The work between ticks (HapticPipeline::prepare_next_tick) after each of those ticks.
+  std::vector<double> free_between_us, contact_between_us;
   std::optional<ScenarioCounts> counts;  // with an oracle
 };
 
 // Runs each cycle through a HapticPipeline on `bvh` (the proxy put at the cycle's first sample, tick k
-// at k ms, the device's force limit `max_force_n`), timing every tick; with an oracle, then counts.
+// at k ms, the device's force limit `max_force_n`), timing every tick and the work after it, as
+// HapticLoop does them; with an oracle, then counts.
 ScenarioResult run_scenario(const Scene& scene, const Bvh& bvh, std::span<const SampledPath> cycles,
                             float max_force_n, const SurfaceOracle* oracle);
 
