@@ -106,8 +106,8 @@ class Bvh {
 
   // The leaves whose bounds meet a box, listed flat with their bounds: where a query that stays in the
   // box looks instead of walking the tree from the root (the haptic proxy keeps one around itself,
-  // gathered again between ticks as it moves: proxy_prepare). A cast then tests a dozen or so boxes side by
-  // side instead of a chain of 18 dependent ones. Fixed size, no allocation.
+  // gathered again between ticks as it moves: proxy_prepare). A cast then tests a dozen or so boxes
+  // side by side instead of a chain of 18 dependent ones. Fixed size, no allocation.
   struct Neighbourhood {
     static constexpr int capacity = 48;
     // Queries trust it only this far inside the box, so that rounding at its faces never matters.

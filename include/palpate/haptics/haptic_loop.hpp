@@ -5,9 +5,10 @@
 //
 // Schedule: period k starts at a deadline on the grid origin + k / rate. The thread sleeps until the
 // deadline (clock_nanosleep TIMER_ABSTIME, then a short spin), runs the tick, and records its start,
-// duration and period. A tick that ends after the end of its period is a missed deadline; the next
-// tick then starts at once, on the latest grid point already passed, so a late tick never causes a
-// burst of catch-up ticks (lost periods show in the achieved rate).
+// duration and period; then, with the force out, readies the next tick in the period's slack
+// (HapticPipeline::prepare_next_tick). A tick that ends after the end of its period is a missed
+// deadline; the next tick then starts at once, on the latest grid point already passed, so a late tick
+// never causes a burst of catch-up ticks (lost periods show in the achieved rate).
 //
 // Live changes: set_material() and set_device_transform() reach the haptic thread through
 // latest-value channels and take effect at the next tick; the loop keeps running, nothing is
