@@ -183,6 +183,17 @@ bool Bvh::gather(Neighbourhood& near, glm::vec3 low, glm::vec3 high) const noexc
   return near.count > 0;
 }
 
+void Bvh::prefetch(const Neighbourhood& near) const noexcept {
+  if (!gathered_here(near)) return;
+  constexpr std::uintptr_t line = 64;
+  for (int k = 0; k < near.count; ++k) {
+    const auto from = reinterpret_cast<std::uintptr_t>(&triangles_[near.first[std::size_t(k)]]);
+    const std::uintptr_t to = from + near.size[std::size_t(k)] * sizeof(Triangle);
+    for (std::uintptr_t at = from & ~(line - 1); at < to; at += line)
+      __builtin_prefetch(reinterpret_cast<const void*>(at));
+  }
+}
+
 BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces, double start_tolerance_mm,
                       ObjectMask seen, const Neighbourhood* near) const noexcept {
   if (nodes_.empty()) return {};

@@ -129,6 +129,10 @@ class Bvh {
   bool gather(Neighbourhood& near, glm::vec3 low, glm::vec3 high) const noexcept;
   // Whether `near` was gathered from this tree: another tree's node indices mean nothing here.
   bool gathered_here(const Neighbourhood& near) const noexcept { return near.gathered_from == nodes_.data(); }
+  // Asks the memory system for the triangles of `near`'s leaves without waiting for them, so that the
+  // queries that follow find them in cache: for the time between ticks (proxy_prepare), where a read
+  // from memory costs the tick nothing.
+  void prefetch(const Neighbourhood& near) const noexcept;
 
   // The first triangle the segment from -> to crosses (smallest t; the lowest BVH index among equal
   // t), or no hit. Computed in double with a watertight edge test, so a segment through a shared edge
