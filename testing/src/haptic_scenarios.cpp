@@ -69,6 +69,17 @@ void add(std::vector<PathSample>& cycle, glm::dvec3 tip) {
   cycle.push_back({double(cycle.size()) * tick_s, glm::vec3(tip)});
 }
 
+std::vector<double> shorter_of(const std::vector<double>& first, const std::vector<double>& second,
+                               const char* what) {
+  if (first.size() != second.size()) {
+    throw Error(std::string("shorter_ticks: the two runs differ in ") + what + " (" +
+                std::to_string(first.size()) + " against " + std::to_string(second.size()) + ")");
+  }
+  std::vector<double> shorter(first.size());
+  for (std::size_t i = 0; i < first.size(); ++i) shorter[i] = std::min(first[i], second[i]);
+  return shorter;
+}
+
 }  // namespace
 
 std::vector<SampledPath> sphere_slide(const BumpySphereOracle& oracle, const CycleShape& shape) {
@@ -233,6 +244,17 @@ ScenarioResult run_scenario(const Scene& scene, const Bvh& bvh, std::span<const 
     if (stuck) ++counts.stuck_cycles;
   }
   return result;
+}
+
+ScenarioResult shorter_ticks(const ScenarioResult& first, const ScenarioResult& second) {
+  ScenarioResult shorter;
+  shorter.free_tick_us = shorter_of(first.free_tick_us, second.free_tick_us, "free ticks");
+  shorter.contact_tick_us = shorter_of(first.contact_tick_us, second.contact_tick_us, "contact ticks");
+  shorter.free_between_us = shorter_of(first.free_between_us, second.free_between_us, "free ticks");
+  shorter.contact_between_us =
+      shorter_of(first.contact_between_us, second.contact_between_us, "contact ticks");
+  shorter.counts = first.counts;
+  return shorter;
 }
 
 }  // namespace palpate::testing

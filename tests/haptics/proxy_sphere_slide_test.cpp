@@ -6,7 +6,11 @@
 // same scenario through the same code.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <string>
+
 #include "palpate/core/bvh.hpp"
+#include "palpate/core/error.hpp"
 #include "palpate/core/phantom.hpp"
 #include "palpate/core/shapes.hpp"
 #include "palpate/testing/haptic_scenarios.hpp"
@@ -67,6 +71,41 @@ TEST(SurfacePressSlide, PhantomBrainGyriAndSulci) {
   const auto cycles_run = testing::surface_press_slides(scene, 0, oracle, {.cycles = cycles, .seed = 1});
   const testing::ScenarioResult result = testing::run_scenario(scene, bvh, cycles_run, 1e3f, &oracle);
   expect_clean(*result.counts, cycles, "phantom brain");
+}
+
+// `bench haptics` reports each tick's shorter time of two runs: the runs must pair tick for tick.
+TEST(ShorterTicks, PairsTwoRunsTickForTick) {
+  const testing::BumpySphereOracle oracle(50.0f, 1.5f);
+  const Scene scene = testing::scene_of("bumpy sphere", make_bumpy_sphere(50.0f, 1.5f, 22952));
+  const Bvh bvh = Bvh::build(scene);
+  const auto cycles = testing::sphere_slide(oracle, {.cycles = 2, .seed = 2007});
+  const testing::ScenarioResult first = testing::run_scenario(scene, bvh, cycles, 1e3f, &oracle);
+  const testing::ScenarioResult second = testing::run_scenario(scene, bvh, cycles, 1e3f, nullptr);
+  const testing::ScenarioResult shorter = testing::shorter_ticks(first, second);
+  ASSERT_GT(first.contact_tick_us.size(), 2000u);
+  ASSERT_EQ(shorter.contact_tick_us.size(), first.contact_tick_us.size());
+  ASSERT_EQ(shorter.free_between_us.size(), first.free_between_us.size());
+  for (std::size_t i = 0; i < first.contact_tick_us.size(); ++i) {
+    ASSERT_EQ(shorter.contact_tick_us[i], std::min(first.contact_tick_us[i], second.contact_tick_us[i])) << i;
+    ASSERT_EQ(shorter.contact_between_us[i],
+              std::min(first.contact_between_us[i], second.contact_between_us[i]))
+        << i;
+  }
+  for (std::size_t i = 0; i < first.free_tick_us.size(); ++i) {
+    ASSERT_EQ(shorter.free_tick_us[i], std::min(first.free_tick_us[i], second.free_tick_us[i])) << i;
+    ASSERT_EQ(shorter.free_between_us[i], std::min(first.free_between_us[i], second.free_between_us[i])) << i;
+  }
+  ASSERT_TRUE(shorter.counts.has_value());
+  EXPECT_EQ(shorter.counts->contact_ticks, first.counts->contact_ticks);
+
+  testing::ScenarioResult fewer = second;
+  fewer.contact_tick_us.pop_back();
+  try {
+    (void)testing::shorter_ticks(first, fewer);
+    ADD_FAILURE() << "runs of different lengths were paired";
+  } catch (const Error& error) {
+    EXPECT_NE(std::string(error.what()).find("contact ticks"), std::string::npos) << error.what();
+  }
 }
 
 }  // namespace

@@ -87,4 +87,11 @@ struct ScenarioResult {
 ScenarioResult run_scenario(const Scene& scene, const Bvh& bvh, std::span<const SampledPath> cycles,
                             float max_force_n, const SurfaceOracle* oracle);
 
+// Each tick's shorter time in two runs of the same scenario (and of the work after it): what the
+// ticks cost where the machine interrupted neither run of them, as a tick is hit in both with a
+// chance near the square of its chance in one. The counts are the first run's. Throws palpate::Error
+// when the runs differ in how many ticks ended free or in contact (the proxy is deterministic, so
+// they cannot unless the scenarios differ).
+ScenarioResult shorter_ticks(const ScenarioResult& first, const ScenarioResult& second);
+
 }  // namespace palpate::testing
