@@ -115,7 +115,7 @@ double mean(const std::vector<double>& values) {
 void add_rows(const std::string& scenario, const std::string& mesh, Load load, const HostInterruptions& host,
               std::size_t triangles, testing::ScenarioResult result, const testing::ScenarioResult& again,
               bool keep_free, bool keep_contact, Report& report) {
-  testing::ScenarioResult own = testing::shorter_ticks(result, again);
+  testing::ScenarioResult own = testing::shorter_ticks(result, again);  // percentiles() reorders it
   if (keep_free) {
     const double free_mean = mean(result.free_tick_us);
     report.rows.push_back({scenario,
