@@ -167,6 +167,31 @@ int edge_at(const Bvh& bvh, const Candidate& on, const glm::dvec3& point, double
   return edge;
 }
 
+// Where a search step starts: the point and the faces it rests on, and whether it was just handed over
+// an edge (and by which face: that matters only then). A step that starts where an earlier one of the
+// tick did repeats it.
+struct StepStart {
+  glm::dvec3 point;
+  std::array<std::uint32_t, max_candidates> faces;
+  int face_count;
+  bool handed_over;
+  std::uint32_t handover_face;
+  bool stepped_over_saddle;
+
+  bool same_as(const StepStart& other, double tolerance) const noexcept {
+    if (face_count != other.face_count || handed_over != other.handed_over ||
+        (handed_over && handover_face != other.handover_face) ||
+        stepped_over_saddle != other.stepped_over_saddle ||
+        !glm::all(glm::lessThanEqual(glm::abs(point - other.point), glm::dvec3(tolerance))))
+      return false;
+    return std::equal(faces.begin(), faces.begin() + face_count, other.faces.begin());
+  }
+};
+
+// The steps of a tick remembered to see it come back to one (the search's loops seen are 4 and 6
+// steps long; the default cap is 16).
+constexpr int remembered_steps = 16;
+
 // The plane of a triangle, raised by the surface epsilon: a constraint.
 Candidate resting_on(const Bvh& bvh, std::uint32_t primitive, double epsilon) noexcept {
   const Bvh::Triangle& tri = bvh.triangle(primitive);
@@ -182,6 +207,7 @@ void ProxyState::reset(glm::vec3 p) noexcept {
   constraint_count = 0;
   placed = true;
   last_iterations = 0;
+  last_cut_short = false;
   neighbourhood = {};
 }
 
@@ -264,8 +290,22 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
     return true;
   };
 
+  // A search can go round a loop: a solve's goal past the end of its triangles, found again from
+  // there face by face back to the same planes (6 steps, 2.9 mm deep in a sulcus of the phantom brain),
+  // or three faces round a vertex within a micrometre of the tip (4 steps). Coming back to where a step
+  // of this tick started, it stops, as the cap would stop it later: the proxy is outside wherever a step
+  // starts.
+  std::array<StepStart, remembered_steps> started;
+  bool went_round = false;
   int iteration = 0;
   while (iteration < params.max_iterations) {
+    StepStart start{p, {}, count, handed_over, handover_face, stepped_over_saddle};
+    for (int i = 0; i < count; ++i) start.faces[std::size_t(i)] = c[i].primitive;
+    const int earlier = std::min(iteration, remembered_steps);
+    went_round = std::any_of(started.begin(), started.begin() + earlier,
+                             [&](const StepStart& s) { return s.same_as(start, tolerance); });
+    if (went_round) break;
+    started[std::size_t(iteration % remembered_steps)] = start;
     ++iteration;
     const int offered = count;
     const Solution s = solve(c, count, hip, tolerance);
@@ -383,6 +423,7 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
 
   state.position_mm = p;
   state.last_iterations = iteration;
+  state.last_cut_short = went_round || iteration >= params.max_iterations;
   // Keep at most three planes (the solve keeps no more; a capped tick may end with a fourth).
   const int first = std::max(0, count - 3);
   state.constraint_count = count - first;

@@ -191,8 +191,7 @@ ScenarioResult run_scenario(const Scene& scene, const Bvh& bvh, std::span<const 
   DeviceLimits limits;
   limits.max_force_n = max_force_n;
   std::vector<TickResult> ticks(longest);
-  std::vector<int> iterations(longest);
-  const int cap = ProxyParams{}.max_iterations;
+  std::vector<char> cut_short(longest);
   for (const SampledPath& cycle : cycles) {
     const std::vector<PathSample>& samples = cycle.samples();
     ScriptedDevice device(cycle, false, limits);
@@ -206,7 +205,7 @@ ScenarioResult run_scenario(const Scene& scene, const Bvh& bvh, std::span<const 
       const auto end = std::chrono::steady_clock::now();
       pipeline.prepare_next_tick();
       const auto prepared = std::chrono::steady_clock::now();
-      iterations[k] = pipeline.proxy_state().last_iterations;
+      cut_short[k] = pipeline.proxy_state().last_cut_short;
       const bool contact = ticks[k].contact.in_contact();
       (contact ? result.contact_tick_us : result.free_tick_us)
           .push_back(std::chrono::duration<double, std::micro>(end - start).count());
@@ -222,7 +221,7 @@ ScenarioResult run_scenario(const Scene& scene, const Bvh& bvh, std::span<const 
       const glm::vec3 tip = samples[k].position_mm;
       const double depth = oracle->depth_mm(tip);
       const float force = glm::length(tick.force_n);
-      const bool capped = iterations[k] >= cap;
+      const bool capped = cut_short[k];
       counts.max_force_n = std::max(counts.max_force_n, double(force));
       counts.capped_ticks += capped;
       if (depth > pop_through_depth_mm && force == 0.0f) ++counts.pop_through_steps;

@@ -137,7 +137,7 @@ class MoveTester {
     const Contact c = proxy_step(state_, bvh_, glm::vec3(hip_), params_);
     ++ticks_;
     contact_ticks_ += c.in_contact();
-    capped_ticks_ += state_.last_iterations >= params_.max_iterations;
+    capped_ticks_ += state_.last_cut_short;
     const glm::dvec3 p = state_.position_mm;
     const glm::dvec3 h(c.hip_mm);
     const auto fail = [&](const std::string& what) {

@@ -13,6 +13,7 @@
 #include "palpate/core/error.hpp"
 #include "palpate/core/phantom.hpp"
 #include "palpate/core/shapes.hpp"
+#include "palpate/haptics/proxy.hpp"
 #include "palpate/testing/haptic_scenarios.hpp"
 #include "palpate/testing/test_shapes.hpp"
 
@@ -71,6 +72,44 @@ TEST(SurfacePressSlide, PhantomBrainGyriAndSulci) {
   const auto cycles_run = testing::surface_press_slides(scene, 0, oracle, {.cycles = cycles, .seed = 1});
   const testing::ScenarioResult result = testing::run_scenario(scene, bvh, cycles_run, 1e3f, &oracle);
   expect_clean(*result.counts, cycles, "phantom brain");
+}
+
+// Deep in the phantom brain's sulci a search can come back to where one of its steps started: a solve's
+// goal past the end of its triangles, found again face by face back to the same planes, or faces round
+// a vertex within a micrometre of the tip. With no cap to cut it short it stops there, instead of going
+// round that loop; the proxy is outside wherever it stops.
+TEST(SurfacePressSlide, ASearchThatComesBackStopsInsteadOfGoingRound) {
+  if (reduced) GTEST_SKIP() << "100 press-slides on the phantom brain are for optimised, unsanitized builds";
+  Scene scene = testing::scene_of("brain", make_brain_phantom());
+  const testing::MeshOracle oracle(scene);
+  const Bvh bvh = Bvh::build(scene);
+  const auto cycles = testing::surface_press_slides(scene, 0, oracle, {.cycles = 100, .seed = 1});
+  ProxyParams uncapped;
+  uncapped.max_iterations = 1000;
+  int went_round = 0, most_steps = 0;
+  for (std::size_t i = 50; i < cycles.size(); ++i) {
+    ProxyState state;
+    state.reset(cycles[i].samples().front().position_mm);
+    for (const PathSample& sample : cycles[i].samples()) {
+      proxy_step(state, bvh, sample.position_mm, uncapped);
+      proxy_prepare(state, bvh);
+      most_steps = std::max(most_steps, state.last_iterations);
+      if (!state.last_cut_short) continue;
+      ++went_round;
+      EXPECT_LE(oracle.depth_mm(glm::vec3(state.position_mm)), 0.0) << "cycle " << i;
+    }
+  }
+  // Measured: 24 ticks of cycles 57, 92 and 97 came back, after at most 21 steps.
+  EXPECT_GE(went_round, 20);
+  EXPECT_LE(most_steps, 24);
+  // The scenario's counts take those ticks as cut short, like the capped ones (28 in all under the
+  // default cap), and find the proxy clean all the same.
+  const testing::ScenarioResult result =
+      testing::run_scenario(scene, bvh, std::span(cycles).subspan(50), 1e3f, &oracle);
+  EXPECT_GE(result.counts->capped_ticks, 20u);
+  EXPECT_EQ(result.counts->pop_through_steps + result.counts->inward_force_steps +
+                result.counts->proxy_inside_steps + result.counts->stuck_cycles,
+            0u);
 }
 
 // `bench haptics` reports each tick's shorter time of two runs: the runs must pair tick for tick.

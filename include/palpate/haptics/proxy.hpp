@@ -17,7 +17,9 @@
 // over convex edges and vertices, settles on an edge or vertex that is the surface's nearest point
 // (handed back to where it came from, it stops), and meets a concave neighbour as a wall on its walk.
 // A tick takes at most `max_iterations` steps; a search cut short resumes the next tick (a tip
-// jumping right across a curved object is followed a triangle per segment).
+// jumping right across a curved object is followed a triangle per segment). A search that comes back
+// to a point and faces it was at earlier in the tick would go round that loop to the cap, and stops
+// there instead.
 //
 // The proxy floats `surface_epsilon_mm` above the planes it touches. Only front faces (crossed from
 // outside, against the outward normal) stop it: meshes are closed, and a proxy that starts inside an
@@ -65,6 +67,9 @@ struct ProxyState {
   int constraint_count = 0;
   bool placed = false;      // false until reset() or the first step, which puts the proxy at the HIP
   int last_iterations = 0;  // steps the last tick took (for statistics and tests)
+  // Whether the last tick's search stopped before it finished: at the step cap, or on coming back to
+  // where it had been (it resumes the next tick either way).
+  bool last_cut_short = false;
   // Where its casts start in the BVH (gathered as it moves, in free space too; see Bvh::first_hit).
   Bvh::Neighbourhood neighbourhood;
 

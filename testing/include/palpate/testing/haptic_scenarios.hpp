@@ -39,7 +39,8 @@ struct ScenarioCounts {
   // or vertex it may settle a tick late: that is not counted); or still in contact at the cycle's last
   // tick, when the tip is back outside.
   std::uint64_t stuck_cycles = 0;
-  std::uint64_t capped_ticks = 0;  // ticks whose search ran into the proxy's segment cap
+  // Ticks whose search was cut short: by the proxy's step cap, or on coming back to where it had been.
+  std::uint64_t capped_ticks = 0;
   std::uint64_t contact_ticks = 0;
   double max_force_n = 0.0;
 };
