@@ -188,14 +188,20 @@ void bench_table1(const Options& options, Report& report) {
   struct Case {
     std::string name;
     bool brain, skin;
+    int cycles_per_skin_cycle;
   };
-  // The brain's folds end a press-slide within about 6 mm (see surface_press_slides): more cycles.
-  const testing::CycleShape press{.cycles = cycles(options, options.quick ? 10 : 25), .seed = options.seed};
-  testing::CycleShape hover = press;
-  hover.press_depth_mm = -3.0f;  // 2 to 4 mm above the surface
-  hover.depth_amplitude_mm = 1.0f;
+  // Fewer cycles than sphere-slide's 50: a press-slide is as long as the surface allows. The brain's
+  // folds end one within about 6 mm (see surface_press_slides), so it gets 8 times the cycles, and as
+  // many contact ticks as the skin (59,248 against 56,957): its p99.9 too is the 60th worst tick, not
+  // the 7th.
+  const int skin_cycles = options.quick ? 10 : 25;
   for (const Case& c :
-       {Case{"brain", true, false}, Case{"skin", false, true}, Case{"brain+skin", true, true}}) {
+       {Case{"brain", true, false, 8}, Case{"skin", false, true, 1}, Case{"brain+skin", true, true, 1}}) {
+    const testing::CycleShape press{.cycles = cycles(options, skin_cycles * c.cycles_per_skin_cycle),
+                                    .seed = options.seed};
+    testing::CycleShape hover = press;
+    hover.press_depth_mm = -3.0f;  // 2 to 4 mm above the surface
+    hover.depth_amplitude_mm = 1.0f;
     progress("Table I mesh " + c.name);
     const Prepared prepared = prepare(table1_scene(c.brain, c.skin), c.name, report);
     const std::size_t touched = prepared.scene.objects.size() - 1;  // the skin when both
@@ -475,7 +481,7 @@ void add_bench_haptics_command(CLI::App& app) {
       ->capture_default_str();
   haptics->add_option("--seed", options->seed, "Seed of the random surface points and directions")
       ->capture_default_str();
-  haptics->add_option("--cycles", options->cycles, "Cycles of every scenario (default: 10 to 50 each)")
+  haptics->add_option("--cycles", options->cycles, "Cycles of every scenario (default: 10 to 200 each)")
       ->check(CLI::PositiveNumber);
   haptics->add_option("--loop-seconds", options->loop_seconds, "Seconds the haptic thread runs per row")
       ->check(CLI::Range(0.1, 600.0));
