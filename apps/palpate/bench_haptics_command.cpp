@@ -331,9 +331,9 @@ void print(const Report& report, const Options& options) {
   std::printf(
       "Tick cost (device read, proxy step on the BVH, spring-damper, device write), simulated 1 ms ticks, "
       "us\n");
-  std::printf("%-13s %-21s %-7s %11s %-8s %8s %7s %7s %7s %8s %9s %8s %8s | %5s %6s %6s %5s %7s\n",
+  std::printf("%-13s %-21s %-7s %11s %-8s %8s %7s %7s %7s %8s %9s %8s %8s | %5s %6s %6s %5s %5s %7s\n",
               "scenario", "mesh", "load", "triangles", "state", "ticks", "p50", "p99", "p99.9", "max",
-              "host-hit", "own99.9", "after99", "pop", "inward", "inside", "stuck", "max N");
+              "host-hit", "own99.9", "after99", "pop", "inward", "inside", "stuck", "cut", "max N");
   for (const TickRow& row : report.rows) {
     std::printf("%-13s %-21s %-7s %11s %-8s %8zu %7.2f %7.2f %7.2f %8.2f %8.3f%% %8.2f %8.2f",
                 row.scenario.c_str(), row.mesh.c_str(), row.load.c_str(),
@@ -341,10 +341,11 @@ void print(const Report& report, const Options& options) {
                 row.tick_us.p99, row.tick_us.p999, row.tick_us.max, 100.0 * hit_share(row),
                 row.own_tick_us.p999, row.between_us.p99);
     if (row.checks) {
-      std::printf(" | %5llu %6llu %6llu %5llu %7.2f\n", (unsigned long long)row.checks->pop_through_steps,
-                  (unsigned long long)row.checks->inward_force_steps,
-                  (unsigned long long)row.checks->proxy_inside_steps,
-                  (unsigned long long)row.checks->stuck_cycles, row.checks->max_force_n);
+      std::printf(
+          " | %5llu %6llu %6llu %5llu %5llu %7.2f\n", (unsigned long long)row.checks->pop_through_steps,
+          (unsigned long long)row.checks->inward_force_steps,
+          (unsigned long long)row.checks->proxy_inside_steps, (unsigned long long)row.checks->stuck_cycles,
+          (unsigned long long)row.checks->capped_ticks, row.checks->max_force_n);
     } else {
       std::printf(" |\n");
     }
@@ -380,6 +381,9 @@ void print(const Report& report, const Options& options) {
       "other meshes, on grids of the mesh's triangles, independent of the BVH and the proxy. The Table I "
       "rows\n"
       "walk along the real surface (the brain's slides end where its folds are thinner than the press).\n"
+      "cut: ticks whose search was cut short (at the proxy's step cap, or coming back to where it had "
+      "been);\n"
+      "the search resumes the next tick.\n"
       "sphere-slide asks for 53,021 triangles and gets 53,022: a closed triangle mesh has an even count.\n"
       "after99: p99 of the work after each tick, once the force is out (the proxy's neighbourhood gathered, "
       "and\n"
@@ -421,7 +425,8 @@ void write_json(const Report& report, const Options& options) {
                      {"inward_force_steps", row.checks->inward_force_steps},
                      {"proxy_inside_steps", row.checks->proxy_inside_steps},
                      {"max_force_n", row.checks->max_force_n},
-                     {"stuck_cycles", row.checks->stuck_cycles}};
+                     {"stuck_cycles", row.checks->stuck_cycles},
+                     {"capped_ticks", row.checks->capped_ticks}};
     }
     rows.push_back(std::move(r));
   }

@@ -67,6 +67,7 @@ TEST(BenchCommand, HapticsAtItsSmallestReportsCleanCountsAndARate) {
       EXPECT_EQ(checks[count].get<int>(), 0) << what << " " << count;
     }
     EXPECT_GT(checks["max_force_n"].get<double>(), 0.5) << what << ": it pressed";
+    EXPECT_LE(checks["capped_ticks"].get<int>(), row["ticks"].get<int>()) << what;
   }
   EXPECT_EQ(contact_rows, 10) << "brain, skin, brain+skin and two sphere-slides, idle and streaming memory";
   EXPECT_EQ(rows_by_load.size(), 2u);
