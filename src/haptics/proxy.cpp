@@ -167,24 +167,30 @@ int edge_at(const Bvh& bvh, const Candidate& on, const glm::dvec3& point, double
   return edge;
 }
 
-// Where a search step starts: the point and the faces it rests on, and whether it was just handed over
-// an edge (and by which face: that matters only then). A step that starts where an earlier one of the
-// tick did repeats it.
+// Where a search step starts: the point, the faces it rests on (with their multipliers), whether the
+// saddle step was taken, whether it was just handed over an edge (then also from where and by which
+// face), and the face last met. All that a step does follows from these and the HIP: a step that starts
+// where an earlier one of the tick did, to the bit, repeats it, and the search would go round that loop
+// to the cap.
 struct StepStart {
   glm::dvec3 point;
-  std::array<std::uint32_t, max_candidates> faces;
+  std::array<Candidate, max_candidates> faces;
   int face_count;
-  bool handed_over;
-  std::uint32_t handover_face;
   bool stepped_over_saddle;
+  bool handed_over;
+  glm::dvec3 handover_from;
+  std::uint32_t handover_face;
+  std::uint32_t last_primitive;
 
-  bool same_as(const StepStart& other, double tolerance) const noexcept {
-    if (face_count != other.face_count || handed_over != other.handed_over ||
-        (handed_over && handover_face != other.handover_face) ||
-        stepped_over_saddle != other.stepped_over_saddle ||
-        !glm::all(glm::lessThanEqual(glm::abs(point - other.point), glm::dvec3(tolerance))))
-      return false;
-    return std::equal(faces.begin(), faces.begin() + face_count, other.faces.begin());
+  bool operator==(const StepStart& other) const noexcept {
+    return point == other.point && face_count == other.face_count &&
+           std::equal(faces.begin(), faces.begin() + face_count, other.faces.begin(),
+                      [](const Candidate& a, const Candidate& b) {
+                        return a.primitive == b.primitive && a.multiplier == b.multiplier;
+                      }) &&
+           stepped_over_saddle == other.stepped_over_saddle && handed_over == other.handed_over &&
+           (!handed_over || (handover_from == other.handover_from && handover_face == other.handover_face)) &&
+           last_primitive == other.last_primitive;
   }
 };
 
@@ -299,12 +305,25 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   bool went_round = false;
   int iteration = 0;
   while (iteration < params.max_iterations) {
-    StepStart start{p, {}, count, handed_over, handover_face, stepped_over_saddle};
-    for (int i = 0; i < count; ++i) start.faces[std::size_t(i)] = c[i].primitive;
-    const int earlier = std::min(iteration, remembered_steps);
-    went_round = std::any_of(started.begin(), started.begin() + earlier,
-                             [&](const StepStart& s) { return s.same_as(start, tolerance); });
-    if (went_round) break;
+    StepStart start{
+        p, {}, count, stepped_over_saddle, handed_over, handover_from, handover_face, last_primitive};
+    std::copy(c, c + count, start.faces.begin());
+    const auto remembered = started.begin() + std::min(iteration, remembered_steps);
+    const auto again = std::find(started.begin(), remembered, start);
+    went_round = again != remembered;
+    if (went_round) {
+      // The steps from the earlier one to this would repeat until the cap: it ends where the cap would
+      // have ended it, to the bit, without taking them.
+      const int loop_length = 1 + (iteration - 1 - int(again - started.begin())) % remembered_steps;
+      const int loop_start = iteration - loop_length;
+      const StepStart& at_cap = started[std::size_t(
+          (loop_start + (params.max_iterations - loop_start) % loop_length) % remembered_steps)];
+      p = at_cap.point;
+      count = at_cap.face_count;
+      std::copy(at_cap.faces.begin(), at_cap.faces.begin() + count, c);
+      last_primitive = at_cap.last_primitive;
+      break;
+    }
     started[std::size_t(iteration % remembered_steps)] = start;
     ++iteration;
     const int offered = count;
