@@ -7,6 +7,7 @@
 #include <glm/geometric.hpp>
 #include <random>
 #include <string>
+#include <vector>
 
 #include "palpate/core/bvh.hpp"
 #include "palpate/haptics/force.hpp"
@@ -22,6 +23,34 @@ constexpr int move_divisor = 10;
 #else
 constexpr int move_divisor = 1;
 #endif
+
+// What a step leaves: the proxy, its planes (with their multipliers) and the contact.
+struct StepOutcome {
+  ProxyState state;
+  Contact contact;
+  bool operator==(const StepOutcome& other) const {
+    if (state.position_mm != other.state.position_mm ||
+        state.constraint_count != other.state.constraint_count || contact.object != other.contact.object ||
+        contact.triangle != other.contact.triangle || contact.point_mm != other.contact.point_mm ||
+        contact.normal != other.contact.normal || contact.depth_mm != other.contact.depth_mm)
+      return false;
+    for (int i = 0; i < state.constraint_count; ++i) {
+      const ProxyConstraint &a = state.constraints[std::size_t(i)],
+                            &b = other.state.constraints[std::size_t(i)];
+      if (a.normal != b.normal || a.offset_mm != b.offset_mm || a.multiplier_mm != b.multiplier_mm ||
+          a.primitive != b.primitive)
+        return false;
+    }
+    return true;
+  }
+};
+
+StepOutcome step_from(const ProxyState& start, const Bvh& bvh, glm::vec3 hip, ProxyParams params, int cap) {
+  StepOutcome outcome{start, {}};
+  params.max_iterations = cap;
+  outcome.contact = proxy_step(outcome.state, bvh, hip, params);
+  return outcome;
+}
 
 struct Surface {  // a point on the mesh with its face normal and a tangent
   glm::dvec3 point, normal, tangent;
@@ -76,6 +105,7 @@ class MoveTester {
     ::testing::Test::RecordProperty("contact_ticks", contact_ticks_);
     ::testing::Test::RecordProperty("release_checks", release_checks_);
     ::testing::Test::RecordProperty("capped_ticks", capped_ticks_);
+    ::testing::Test::RecordProperty("came_back_ticks", came_back_ticks_);
     EXPECT_GE(ticks_, options_.ticks);
     // The moves really exercise contact and release.
     EXPECT_GT(contact_ticks_, ticks_ / 10);
@@ -132,12 +162,18 @@ class MoveTester {
 
   // One haptic tick with the HIP at `to`, and every check.
   void tick(glm::dvec3 to, double max_lag_mm = -1.0) {
+    const ProxyState start = state_;
     const glm::dvec3 before = state_.position_mm;
     hip_ = confine(to);
     const Contact c = proxy_step(state_, bvh_, glm::vec3(hip_), params_);
     ++ticks_;
     contact_ticks_ += c.in_contact();
     capped_ticks_ += state_.last_cut_short;
+    std::string came_back;
+    if (state_.last_cut_short && state_.last_iterations < params_.max_iterations) {
+      ++came_back_ticks_;
+      came_back = differs_from_the_capped_search(start, bvh_, glm::vec3(hip_), params_, state_, c);
+    }
     const glm::dvec3 p = state_.position_mm;
     const glm::dvec3 h(c.hip_mm);
     const auto fail = [&](const std::string& what) {
@@ -146,6 +182,7 @@ class MoveTester {
                     << before.y << ", " << before.z << ")";
       ++failures_;
     };
+    if (!came_back.empty()) fail(came_back);
     if (reference_.inside(p)) fail("the proxy went inside a closed mesh");
     if (options_.plate_top != 0.0f && plate_side_ * p.z <= options_.plate_top)
       fail("the proxy went through the plate");
@@ -265,10 +302,38 @@ class MoveTester {
   ProxyState state_;
   glm::dvec3 lo_, hi_, hip_;
   double plate_side_ = 1.0;  // +1 above the plate, -1 below
-  int ticks_ = 0, contact_ticks_ = 0, release_checks_ = 0, failures_ = 0, capped_ticks_ = 0;
+  int ticks_ = 0, contact_ticks_ = 0, release_checks_ = 0, failures_ = 0, capped_ticks_ = 0,
+      came_back_ticks_ = 0;
 };
 
 }  // namespace
+
+std::string differs_from_the_capped_search(const ProxyState& start, const Bvh& bvh, glm::vec3 hip,
+                                           const ProxyParams& params, const ProxyState& ended,
+                                           const Contact& contact) {
+  const int n = ended.last_iterations;
+  // Capped at j <= n, the search runs j steps and never sees itself come back.
+  std::vector<StepOutcome> capped_at(std::size_t(n) + 1);
+  for (int j = 0; j <= n; ++j) capped_at[std::size_t(j)] = step_from(start, bvh, hip, params, j);
+  // Step n started as the loop's first step did: capped at n + 1, the search ends as after that step.
+  const StepOutcome one_more = step_from(start, bvh, hip, params, n + 1);
+  int loop_start = -1;
+  for (int j = 1; j <= n; ++j) {
+    if (capped_at[std::size_t(j)] == one_more) loop_start = j - 1;
+  }
+  if (loop_start < 0) return "capped one step past coming back, the search ended off its loop";
+  if (!(capped_at[std::size_t(n)] == capped_at[std::size_t(loop_start)]))
+    return "the search came back to a step it had not started as before";
+  const int loop_length = n - loop_start;
+  for (const int k : {params.max_iterations, n + 2, n + loop_length, n + 2 * loop_length + 1}) {
+    if (!(step_from(start, bvh, hip, params, k) ==
+          capped_at[std::size_t(loop_start + (k - loop_start) % loop_length)]))
+      return "capped at " + std::to_string(k) + ", the search that came back ended off the cap's step";
+  }
+  if (!(StepOutcome{ended, contact} == step_from(start, bvh, hip, params, params.max_iterations)))
+    return "the search that came back ended unlike the same step again";
+  return "";
+}
 
 void run_proxy_moves(const Scene& scene, std::uint32_t seed, MoveOptions options) {
   options.ticks = std::max(1, options.ticks / move_divisor);

@@ -7,10 +7,15 @@
 // - when the tip is outside and the straight path from the proxy to it is clear (brute-force segment
 //   test), the contact is released and the proxy is at the tip;
 // - while pressing and sliding, the proxy keeps up with the tip (no stuck proxy);
-// - a tick's search rarely runs into the segment cap.
+// - a tick's search rarely runs into the segment cap;
+// - a search that came back to where one of its steps started ended where the cap would have ended it.
 #include <cstdint>
+#include <glm/vec3.hpp>
+#include <string>
 
+#include "palpate/core/bvh.hpp"
 #include "palpate/core/scene.hpp"
+#include "palpate/haptics/proxy.hpp"
 
 namespace palpate::test {
 
@@ -32,5 +37,14 @@ struct MoveOptions {
 
 // Runs the moves with a fixed seed; failures are reported through GoogleTest (at most ten printed).
 void run_proxy_moves(const Scene& scene, std::uint32_t seed, MoveOptions options);
+
+// For a step from `start` toward `hip` that came back to where one of its steps started after n steps
+// and ended there (`ended`, `contact`), before its cap: what differs from the search capped at each
+// step up to n, which never sees itself come back, or "" when nothing does. Step n must start as a
+// step of the loop did, and the step capped at n + k must end as the one capped at the loop's step
+// that n + k falls on.
+std::string differs_from_the_capped_search(const ProxyState& start, const Bvh& bvh, glm::vec3 hip,
+                                           const ProxyParams& params, const ProxyState& ended,
+                                           const Contact& contact);
 
 }  // namespace palpate::test
