@@ -168,8 +168,8 @@ int edge_at(const Bvh& bvh, const Candidate& on, const glm::dvec3& point, double
 }
 
 // Where a search step starts: the point, the faces it rests on (with their multipliers), whether the
-// saddle step was taken, whether it was just handed over an edge (then also from where and by which
-// face), and the face last met. All that a step does follows from these and the HIP: a step that starts
+// saddle step was taken, whether it was just handed over an edge, from where and by which face (as
+// last set), and the face last met. All that a step does follows from these and the HIP: a step that starts
 // where an earlier one of the tick did, to the bit, repeats it, and the search would go round that loop
 // to the cap.
 struct StepStart {
@@ -189,13 +189,15 @@ struct StepStart {
                         return a.primitive == b.primitive && a.multiplier == b.multiplier;
                       }) &&
            stepped_over_saddle == other.stepped_over_saddle && handed_over == other.handed_over &&
-           (!handed_over || (handover_from == other.handover_from && handover_face == other.handover_face)) &&
+           handover_from == other.handover_from && handover_face == other.handover_face &&
            last_primitive == other.last_primitive;
   }
 };
 
-// The steps of a tick remembered to see it come back to one (the search's loops seen are 4 and 6
-// steps long; the default cap is 16).
+// The steps of a tick remembered to see it come back to one: from its fifth on (most ticks take one to
+// three steps, and pay nothing; a loop is seen once it has gone round after that), the last 16 (the
+// loops seen take 4 and 6 steps; the default cap is 16).
+constexpr int first_remembered_step = 4;
 constexpr int remembered_steps = 16;
 
 // The plane of a triangle, raised by the surface epsilon: a constraint.
@@ -305,26 +307,30 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   bool went_round = false;
   int iteration = 0;
   while (iteration < params.max_iterations) {
-    StepStart start{
-        p, {}, count, stepped_over_saddle, handed_over, handover_from, handover_face, last_primitive};
-    std::copy(c, c + count, start.faces.begin());
-    const auto remembered = started.begin() + std::min(iteration, remembered_steps);
-    const auto again = std::find(started.begin(), remembered, start);
-    went_round = again != remembered;
-    if (went_round) {
-      // The steps from the earlier one to this would repeat until the cap: it ends where the cap would
-      // have ended it, to the bit, without taking them.
-      const int loop_length = 1 + (iteration - 1 - int(again - started.begin())) % remembered_steps;
-      const int loop_start = iteration - loop_length;
-      const StepStart& at_cap = started[std::size_t(
-          (loop_start + (params.max_iterations - loop_start) % loop_length) % remembered_steps)];
-      p = at_cap.point;
-      count = at_cap.face_count;
-      std::copy(at_cap.faces.begin(), at_cap.faces.begin() + count, c);
-      last_primitive = at_cap.last_primitive;
-      break;
+    if (iteration >= first_remembered_step) {
+      StepStart start{
+          p, {}, count, stepped_over_saddle, handed_over, handover_from, handover_face, last_primitive};
+      std::copy(c, c + count, start.faces.begin());
+      const int step = iteration - first_remembered_step;  // its place among the remembered
+      const auto remembered = started.begin() + std::min(step, remembered_steps);
+      const auto again = std::find(started.begin(), remembered, start);
+      went_round = again != remembered;
+      if (went_round) {
+        // The steps from the earlier one to this would repeat until the cap: it ends where the cap
+        // would have ended it, to the bit, without taking them.
+        const int loop_length = 1 + (step - 1 - int(again - started.begin())) % remembered_steps;
+        const int loop_start = step - loop_length;
+        const int at_cap_step =
+            loop_start + (params.max_iterations - first_remembered_step - loop_start) % loop_length;
+        const StepStart& at_cap = started[std::size_t(at_cap_step % remembered_steps)];
+        p = at_cap.point;
+        count = at_cap.face_count;
+        std::copy(at_cap.faces.begin(), at_cap.faces.begin() + count, c);
+        last_primitive = at_cap.last_primitive;
+        break;
+      }
+      started[std::size_t(step % remembered_steps)] = start;
     }
-    started[std::size_t(iteration % remembered_steps)] = start;
     ++iteration;
     const int offered = count;
     const Solution s = solve(c, count, hip, tolerance);
