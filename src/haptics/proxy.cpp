@@ -169,9 +169,9 @@ int edge_at(const Bvh& bvh, const Candidate& on, const glm::dvec3& point, double
 
 // Where a search step starts: the point, the faces it rests on (with their multipliers), whether the
 // saddle step was taken, whether it was just handed over an edge, from where and by which face (as
-// last set), and the face last met. All that a step does follows from these and the HIP: a step that starts
-// where an earlier one of the tick did, to the bit, repeats it, and the search would go round that loop
-// to the cap.
+// last set), and the face last met. All that a step does follows from these and the HIP: a step that
+// starts where an earlier one of the tick did, to the bit, repeats it, and the search would go round
+// that loop to the cap.
 struct StepStart {
   glm::dvec3 point;
   std::array<Candidate, max_candidates> faces;
@@ -301,8 +301,7 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   // A search can go round a loop: a solve's goal past the end of its triangles, found again from
   // there face by face back to the same planes (6 steps, 2.9 mm deep in a sulcus of the phantom brain),
   // or three faces round a vertex within a micrometre of the tip (4 steps). Coming back to where a step
-  // of this tick started, it stops, as the cap would stop it later: the proxy is outside wherever a step
-  // starts.
+  // of this tick started, it ends where the cap would have ended it, without the steps between.
   std::array<StepStart, remembered_steps> started;
   bool went_round = false;
   int iteration = 0;

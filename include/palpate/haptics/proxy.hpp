@@ -18,8 +18,8 @@
 // (handed back to where it came from, it stops), and meets a concave neighbour as a wall on its walk.
 // A tick takes at most `max_iterations` steps; a search cut short resumes the next tick (a tip
 // jumping right across a curved object is followed a triangle per segment). A search that comes back
-// to a point and faces it was at earlier in the tick would go round that loop to the cap, and stops
-// there instead.
+// to where one of its steps started would go round that loop to the cap: it ends as the cap would have
+// ended it, without the steps between.
 //
 // The proxy floats `surface_epsilon_mm` above the planes it touches. Only front faces (crossed from
 // outside, against the outward normal) stop it: meshes are closed, and a proxy that starts inside an
