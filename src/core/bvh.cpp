@@ -72,27 +72,41 @@ glm::dvec3 vertex(const Bvh::Triangle& tri, int k) noexcept {
 }  // namespace
 
 glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
-                                     const glm::dvec3& c) noexcept {
+                                     const glm::dvec3& c, TriangleFeature& feature) noexcept {
   // Walks the Voronoi regions of the vertices, the edges and the face.
   const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
   const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  feature = TriangleFeature::a;
   if (d1 <= 0.0 && d2 <= 0.0) return a;
   const glm::dvec3 bp = p - b;
   const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  feature = TriangleFeature::b;
   if (d3 >= 0.0 && d4 <= d3) return b;
   const double vc = d1 * d4 - d3 * d2;
+  feature = TriangleFeature::ab;
   if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + ab * (d1 / (d1 - d3));
   const glm::dvec3 cp = p - c;
   const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  feature = TriangleFeature::c;
   if (d6 >= 0.0 && d5 <= d6) return c;
   const double vb = d5 * d2 - d1 * d6;
+  feature = TriangleFeature::ac;
   if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
   const double va = d3 * d6 - d5 * d4;
+  feature = TriangleFeature::bc;
   if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
     return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
   const double denominator = va + vb + vc;
+  feature = TriangleFeature::a;
   if (denominator <= 0.0) return a;  // degenerate (zero-area) triangle: any vertex is as good
+  feature = TriangleFeature::face;
   return a + ab * (vb / denominator) + ac * (vc / denominator);
+}
+
+glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                     const glm::dvec3& c) noexcept {
+  TriangleFeature feature;
+  return closest_point_on_triangle(p, a, b, c, feature);
 }
 
 std::size_t Bvh::memory_bytes() const noexcept {
@@ -332,6 +346,25 @@ BvhHit Bvh::first_hit_around(const glm::dvec3& from, const glm::dvec3& to, std::
     }
   }
   return {};
+}
+
+std::size_t Bvh::faces_around(std::uint32_t primitive, const glm::dvec3& vertex,
+                              std::span<std::uint32_t> around) const noexcept {
+  const auto& first = triangles_[primitive].vertices;
+  int at = 0;
+  while (at < 3 && glm::dvec3(first[std::size_t(at)]) != vertex) ++at;
+  if (at == 3) return 0;
+  const glm::vec3 centre = first[std::size_t(at)];
+  std::uint32_t current = primitive;
+  for (std::size_t count = 0; count < around.size(); ++count) {
+    around[count] = current;
+    current = neighbour(current, at);
+    if (current == no_neighbour) return 0;
+    if (current == primitive) return count + 1;
+    const auto& corners = triangles_[current].vertices;
+    at = corners[0] == centre ? 0 : corners[1] == centre ? 1 : 2;
+  }
+  return 0;
 }
 
 BvhHit Bvh::closest_point(const glm::dvec3& point, double max_distance_mm, ObjectMask seen) const noexcept {

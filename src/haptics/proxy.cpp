@@ -1,6 +1,7 @@
 // God-object proxy step: continuous collision of the proxy's path against the BVH; on one face, a walk
 // to the triangle's nearest point and on over the face across its edge; on two or three (concave
-// creases and corners), the point nearest the HIP on the free side of their planes.
+// creases and corners), the point nearest the HIP on the free side of their planes; at a vertex, the
+// point of the faces round it nearest the HIP.
 #include "palpate/haptics/proxy.hpp"
 
 #include <algorithm>
@@ -119,6 +120,79 @@ bool supported(const Bvh& bvh, const Candidate* c, int count, const glm::dvec3& 
   return true;
 }
 
+// The plane of a triangle, raised by the surface epsilon: a constraint.
+Candidate resting_on(const Bvh& bvh, std::uint32_t primitive, double epsilon) noexcept {
+  const Bvh::Triangle& tri = bvh.triangle(primitive);
+  const glm::dvec3 v0(tri.vertices[0]), v1(tri.vertices[1]), v2(tri.vertices[2]);
+  const glm::dvec3 normal = glm::normalize(glm::cross(v1 - v0, v2 - v0));
+  return {normal, glm::dot(normal, v0) + epsilon, primitive, 0.0};
+}
+
+// The faces round a vertex the search looks at together (the phantom brain's vertices have up to 12).
+constexpr std::size_t max_faces_round_vertex = 16;
+
+// A search that reaches a vertex with the HIP behind the surface there: the point of the faces round
+// the vertex nearest the HIP is where the proxy rests, when it lies among them (not on their far
+// edges), lifted by the surface epsilon: on a face, over it; in a valley between two, where their
+// planes meet; on a ridge or at the vertex, over the face it is reached on. Going round those faces one
+// at a time took the search 10 steps a tick at the vertices of a sulcus's floor of the phantom brain
+// (docs/design.md, "tenth step"). False when the faces do not close round the vertex or their nearest
+// point lies on their far edges (the surface comes nearer beyond them); otherwise `c` and `count` hold
+// the planes it rests on, `point` where, and `inside_face` whether that is inside a face (not on an
+// edge or the vertex, where a face of something else that it touches may come nearer).
+bool rest_round_vertex(const Bvh& bvh, std::uint32_t face, const glm::dvec3& vertex, const glm::dvec3& hip,
+                       double epsilon, double tolerance, Candidate* c, int& count, glm::dvec3& point,
+                       bool& inside_face) noexcept {
+  std::array<std::uint32_t, max_faces_round_vertex> around;
+  const std::size_t faces = bvh.faces_around(face, vertex, around);
+  if (faces < 3) return false;
+  // Each face's corners from the vertex round (the vertex, then the corner it shares with the next face
+  // round, then the one it shares with the one before).
+  const auto corners = [&](std::size_t i) {
+    const auto& v = bvh.triangle(around[i % faces]).vertices;
+    const std::size_t at = glm::dvec3(v[0]) == vertex ? 0 : glm::dvec3(v[1]) == vertex ? 1 : 2;
+    return std::array<glm::dvec3, 3>{vertex, glm::dvec3(v[(at + 1) % 3]), glm::dvec3(v[(at + 2) % 3])};
+  };
+  std::size_t nearest_face = faces;
+  TriangleFeature on = TriangleFeature::a;
+  double nearest2 = 0.0;
+  for (std::size_t i = 0; i < faces; ++i) {
+    const auto v = corners(i);
+    TriangleFeature feature;
+    const glm::dvec3 q = closest_point_on_triangle(hip, v[0], v[1], v[2], feature);
+    const double distance2 = glm::dot(q - hip, q - hip);
+    if (nearest_face == faces || distance2 < nearest2) {
+      nearest_face = i;
+      nearest2 = distance2;
+      on = feature;
+      point = q;
+    }
+  }
+  if (on == TriangleFeature::b || on == TriangleFeature::c || on == TriangleFeature::bc) return false;
+  c[0] = resting_on(bvh, around[nearest_face], epsilon);
+  count = 1;
+  if (on == TriangleFeature::a) {  // the vertex: over the face it is reached on
+    c[0] = resting_on(bvh, face, epsilon);
+  } else if (on == TriangleFeature::ab || on == TriangleFeature::ac) {
+    // On the edge it shares with the next face round (ab) or the one before (ac): a valley when the
+    // other face's far corner lies in front of this one's plane.
+    const std::size_t other = on == TriangleFeature::ab ? nearest_face + 1 : nearest_face + faces - 1;
+    const glm::dvec3 far = corners(other)[on == TriangleFeature::ab ? 1 : 2];
+    if (glm::dot(c[0].normal, far - vertex) > 0.0) {
+      c[1] = resting_on(bvh, around[other % faces], epsilon);
+      count = 2;
+    }
+  }
+  const glm::dvec3 lifted = point + (c[0].offset - glm::dot(c[0].normal, point)) * c[0].normal;
+  const Solution s = solve(c, count, hip, tolerance);
+  // The HIP must be behind every plane it rests on, or the spring would pull it into the surface.
+  if (!s.found || s.mask != (1u << count) - 1) return false;
+  for (int i = 0; i < count; ++i) c[i].multiplier = s.multiplier[i];
+  point = count == 2 ? s.point : lifted;
+  inside_face = on == TriangleFeature::face;
+  return true;
+}
+
 // The proxy's neighbourhood in the BVH: a box 0.7 of its face's sizes either side (0.26 µs at the
 // median and 1.5 µs at p99 at 10 M triangles, between ticks). Its casts then test the 6-14
 // leaves listed there side by side instead of walking the tree's chain of dependent box tests
@@ -199,14 +273,6 @@ struct StepStart {
 // loops seen take 4 and 6 steps; the default cap is 16).
 constexpr int first_remembered_step = 4;
 constexpr int remembered_steps = 16;
-
-// The plane of a triangle, raised by the surface epsilon: a constraint.
-Candidate resting_on(const Bvh& bvh, std::uint32_t primitive, double epsilon) noexcept {
-  const Bvh::Triangle& tri = bvh.triangle(primitive);
-  const glm::dvec3 v0(tri.vertices[0]), v1(tri.vertices[1]), v2(tri.vertices[2]);
-  const glm::dvec3 normal = glm::normalize(glm::cross(v1 - v0, v2 - v0));
-  return {normal, glm::dot(normal, v0) + epsilon, primitive, 0.0};
-}
 
 }  // namespace
 
@@ -296,6 +362,28 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
     last_primitive = closer.primitive;
     handed_over = false;
     return true;
+  };
+
+  // At a vertex with the HIP behind the faces round it: the proxy rests where they come nearest the
+  // HIP, when that is among them and the way there is free. None when it did not move there.
+  enum class Rest { none, inside_face, at_edge_or_vertex };
+  const auto rest_round = [&](const glm::dvec3& vertex) {
+    Candidate resting[2];
+    int resting_count = 0;
+    glm::dvec3 rest;
+    bool inside_face = false;
+    if (!rest_round_vertex(bvh, c[0].primitive, vertex, hip, epsilon, tolerance, resting, resting_count, rest,
+                           inside_face))
+      return Rest::none;
+    if (rest != p && !bvh.clear_above(resting[0].primitive, p, rest) &&
+        bvh.first_hit(p, rest, Faces::front, tolerance, touchable, near).hit())
+      return Rest::none;
+    p = rest;
+    count = resting_count;
+    std::copy(resting, resting + count, c);
+    last_primitive = c[0].primitive;
+    handed_over = false;
+    return inside_face ? Rest::inside_face : Rest::at_edge_or_vertex;
   };
 
   // A search can go round a loop: a solve's goal past the end of its triangles, found again from
@@ -421,8 +509,17 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
     // look from here toward the HIP. From a vertex, among the faces around it first (the one the look
     // meets unless another surface passes within micrometres); the whole look when none is in the way.
     BvhHit next;
-    if (at_edge && edge < 0)
+    if (at_edge && edge < 0) {
       next = bvh.first_hit_around(p, hip, c[0].primitive, nearest, tolerance, touchable);
+      // The HIP behind the faces there: the proxy rests where they come nearest it, if it can.
+      const Rest rest = next.hit() ? rest_round(nearest) : Rest::none;
+      if (rest != Rest::none) {
+        if (rest == Rest::at_edge_or_vertex &&
+            step_onto_closer_face({c[0].primitive, count > 1 ? c[1].primitive : Bvh::no_neighbour}))
+          continue;
+        break;
+      }
+    }
     if (!next.hit()) next = bvh.first_hit(p, hip, Faces::front, tolerance, touchable, near);
     if (!next.hit()) {  // nothing in the way: the HIP is outside and reachable
       p = hip;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <glm/geometric.hpp>
 #include <glm/gtc/matrix_transform.hpp>
@@ -429,6 +430,81 @@ TEST(Bvh, AroundABorderOrSplitVertexThereIsNoAnswer) {
     apart.normals.push_back(split.normals[i]);
   }
   EXPECT_EQ(looks_around(Bvh::build(scene_of(apart)), {0, 0, 0}), std::pair(0, 36));
+}
+
+// Going round a vertex lists every triangle with a corner there (found here by looking at them all),
+// each once, in order: each shares with the one before the edge from the vertex to that one's next
+// corner.
+TEST(Bvh, FacesAroundAVertexAreAllThoseWithACornerThereInOrderRoundIt) {
+  const Bvh bvh = Bvh::build(scene_of(make_bumpy_sphere(50.0f, 1.5f, 20000)));
+  std::mt19937 rng(12);
+  std::uniform_int_distribution<std::uint32_t> pick(0, std::uint32_t(bvh.triangle_count() - 1));
+  std::array<std::uint32_t, 16> around;
+  std::map<std::size_t, int> valences;
+  for (int i = 0; i < 2000; ++i) {
+    const std::uint32_t primitive = pick(rng);
+    const glm::vec3 corner = bvh.triangle(primitive).vertices[rng() % 3];
+    std::vector<std::uint32_t> with_corner;
+    for (std::uint32_t t = 0; t < bvh.triangle_count(); ++t) {
+      const auto& v = bvh.triangle(t).vertices;
+      if (v[0] == corner || v[1] == corner || v[2] == corner) with_corner.push_back(t);
+    }
+    const std::size_t count = bvh.faces_around(primitive, glm::dvec3(corner), around);
+    ASSERT_EQ(count, with_corner.size()) << i;
+    ++valences[count];
+    EXPECT_EQ(around[0], primitive);
+    std::vector<std::uint32_t> listed(around.begin(), around.begin() + std::ptrdiff_t(count));
+    std::sort(listed.begin(), listed.end());
+    EXPECT_EQ(listed, with_corner) << i;
+    for (std::size_t k = 0; k < count; ++k) {
+      const auto& before = bvh.triangle(around[k]).vertices;
+      const std::size_t at = before[0] == corner ? 0 : before[1] == corner ? 1 : 2;
+      const glm::vec3 next_corner = before[(at + 1) % 3];
+      const auto& after = bvh.triangle(around[(k + 1) % count]).vertices;
+      EXPECT_TRUE(after[0] == next_corner || after[1] == next_corner || after[2] == next_corner) << i;
+    }
+  }
+  EXPECT_GE(valences.size(), 3u) << "vertices of several valences";
+  // No answer where none of the triangle's corners is the point, where there are more triangles than
+  // room, or at a border.
+  const glm::dvec3 v(bvh.triangle(0).vertices[0]);
+  EXPECT_EQ(bvh.faces_around(0, (v + glm::dvec3(bvh.triangle(0).vertices[1])) * 0.5, around), 0u);
+  EXPECT_EQ(bvh.faces_around(0, v, std::span(around).first(3)), 0u);
+  const Bvh grid = Bvh::build(scene_of(make_grid(10.0f, 4)));
+  for (std::uint32_t t = 0; t < grid.triangle_count(); ++t) {
+    for (const glm::vec3& corner : grid.triangle(t).vertices) {
+      const bool border = std::abs(corner.x) == 5.0f || std::abs(corner.y) == 5.0f;
+      EXPECT_EQ(grid.faces_around(t, glm::dvec3(corner), around) == 0, border) << t;
+    }
+  }
+}
+
+// The part of a triangle a closest point lies on: from points beyond each corner and edge and over the
+// face, and the point is the same as without asking.
+TEST(ClosestPointOnTriangle, NamesTheCornerEdgeOrFaceItLiesOn) {
+  const glm::dvec3 a(0.0, 0.0, 0.0), b(4.0, 0.0, 0.0), c(1.0, 3.0, 0.0);
+  const glm::dvec3 up(0.0, 0.0, 2.0);
+  const struct {
+    glm::dvec3 from;
+    TriangleFeature feature;
+  } cases[] = {
+      {glm::dvec3(-1.0, -1.0, 0.0) + up, TriangleFeature::a},
+      {glm::dvec3(5.0, -1.0, 0.0) - up, TriangleFeature::b},
+      {glm::dvec3(1.0, 4.0, 0.0) + up, TriangleFeature::c},
+      {glm::dvec3(2.0, -1.0, 0.0) + up, TriangleFeature::ab},
+      {glm::dvec3(-1.0, 1.0, 0.0) - up, TriangleFeature::ac},
+      {glm::dvec3(3.5, 2.0, 0.0) + up, TriangleFeature::bc},
+      {glm::dvec3(1.5, 1.0, 0.0) - up, TriangleFeature::face},
+  };
+  for (const auto& [from, want] : cases) {
+    TriangleFeature feature;
+    const glm::dvec3 q = closest_point_on_triangle(from, a, b, c, feature);
+    EXPECT_EQ(feature, want) << from.x << " " << from.y;
+    EXPECT_EQ(q, closest_point_on_triangle(from, a, b, c));
+  }
+  TriangleFeature feature;
+  EXPECT_EQ(closest_point_on_triangle({-1.0, -1.0, 1.0}, a, b, c, feature), a) << "a corner bit for bit";
+  EXPECT_EQ(closest_point_on_triangle({1.0, 4.0, 0.0}, a, b, c, feature), c);
 }
 
 TEST(Bvh, StartToleranceCatchesASegmentStartingJustBehindAFace) {

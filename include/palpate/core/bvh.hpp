@@ -53,9 +53,16 @@ inline bool sees(ObjectMask mask, int object) noexcept {
   return mask.empty() || (object >= 0 && std::size_t(object) < mask.size() && mask[std::size_t(object)] != 0);
 }
 
-// The point of triangle (a, b, c) closest to p (Ericson, Real-Time Collision Detection, 5.1.5).
+// The part of a triangle (a, b, c) a closest point lies on: a corner, an edge (inside it) or the face.
+enum class TriangleFeature { a, b, c, ab, ac, bc, face };
+
+// The point of triangle (a, b, c) closest to p (Ericson, Real-Time Collision Detection, 5.1.5); a
+// corner is returned bit for bit.
 glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
                                      const glm::dvec3& c) noexcept;
+// The same, with the part of the triangle it lies on.
+glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                     const glm::dvec3& c, TriangleFeature& feature) noexcept;
 
 class Bvh {
  public:
@@ -164,6 +171,13 @@ class Bvh {
   BvhHit first_hit_around(const glm::dvec3& from, const glm::dvec3& to, std::uint32_t primitive,
                           const glm::dvec3& vertex, double start_tolerance_mm = 0.0,
                           ObjectMask seen = {}) const noexcept;
+
+  // The triangles around the corner of triangle `primitive` at `vertex`, in order round it (each one
+  // across the edge from the vertex to the next corner of the one before), `primitive` first, written to
+  // `around`; their number, or 0 when no corner of the triangle is at `vertex` (bit for bit), when they do
+  // not close around it or when more than around.size() meet there.
+  std::size_t faces_around(std::uint32_t primitive, const glm::dvec3& vertex,
+                           std::span<std::uint32_t> around) const noexcept;
 
   // The closest point on any triangle of the `seen` objects to `point` no farther than
   // `max_distance_mm`, or no hit.
