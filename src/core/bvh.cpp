@@ -69,44 +69,69 @@ glm::dvec3 vertex(const Bvh::Triangle& tri, int k) noexcept {
   return glm::dot(outside, outside);
 }
 
+// Walks the Voronoi regions of the vertices, the edges and the face. Naming the feature is compiled in
+// only where asked for: the faces-near query calls this for every triangle it tests.
+template <bool named>
+glm::dvec3 closest_point_in_region(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
+                                   const glm::dvec3& c, TriangleFeature* feature) noexcept {
+  const auto name = [feature](TriangleFeature f) {
+    if constexpr (named) *feature = f;
+  };
+  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
+  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
+  if (d1 <= 0.0 && d2 <= 0.0) {
+    name(TriangleFeature::a);
+    return a;
+  }
+  const glm::dvec3 bp = p - b;
+  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
+  if (d3 >= 0.0 && d4 <= d3) {
+    name(TriangleFeature::b);
+    return b;
+  }
+  const double vc = d1 * d4 - d3 * d2;
+  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) {
+    name(TriangleFeature::ab);
+    return a + ab * (d1 / (d1 - d3));
+  }
+  const glm::dvec3 cp = p - c;
+  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
+  if (d6 >= 0.0 && d5 <= d6) {
+    name(TriangleFeature::c);
+    return c;
+  }
+  const double vb = d5 * d2 - d1 * d6;
+  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) {
+    name(TriangleFeature::ac);
+    return a + ac * (d2 / (d2 - d6));
+  }
+  const double va = d3 * d6 - d5 * d4;
+  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0) {
+    name(TriangleFeature::bc);
+    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
+  }
+  const double denominator = va + vb + vc;
+  // A degenerate (zero-area) triangle: any vertex is as good.
+  if (denominator <= 0.0) {
+    name(TriangleFeature::a);
+    return a;
+  }
+  {
+    name(TriangleFeature::face);
+    return a + ab * (vb / denominator) + ac * (vc / denominator);
+  }
+}
+
 }  // namespace
 
 glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
-                                     const glm::dvec3& c, TriangleFeature& feature) noexcept {
-  // Walks the Voronoi regions of the vertices, the edges and the face.
-  const glm::dvec3 ab = b - a, ac = c - a, ap = p - a;
-  const double d1 = glm::dot(ab, ap), d2 = glm::dot(ac, ap);
-  feature = TriangleFeature::a;
-  if (d1 <= 0.0 && d2 <= 0.0) return a;
-  const glm::dvec3 bp = p - b;
-  const double d3 = glm::dot(ab, bp), d4 = glm::dot(ac, bp);
-  feature = TriangleFeature::b;
-  if (d3 >= 0.0 && d4 <= d3) return b;
-  const double vc = d1 * d4 - d3 * d2;
-  feature = TriangleFeature::ab;
-  if (vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0) return a + ab * (d1 / (d1 - d3));
-  const glm::dvec3 cp = p - c;
-  const double d5 = glm::dot(ab, cp), d6 = glm::dot(ac, cp);
-  feature = TriangleFeature::c;
-  if (d6 >= 0.0 && d5 <= d6) return c;
-  const double vb = d5 * d2 - d1 * d6;
-  feature = TriangleFeature::ac;
-  if (vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0) return a + ac * (d2 / (d2 - d6));
-  const double va = d3 * d6 - d5 * d4;
-  feature = TriangleFeature::bc;
-  if (va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0)
-    return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-  const double denominator = va + vb + vc;
-  feature = TriangleFeature::a;
-  if (denominator <= 0.0) return a;  // degenerate (zero-area) triangle: any vertex is as good
-  feature = TriangleFeature::face;
-  return a + ab * (vb / denominator) + ac * (vc / denominator);
+                                     const glm::dvec3& c) noexcept {
+  return closest_point_in_region<false>(p, a, b, c, nullptr);
 }
 
 glm::dvec3 closest_point_on_triangle(const glm::dvec3& p, const glm::dvec3& a, const glm::dvec3& b,
-                                     const glm::dvec3& c) noexcept {
-  TriangleFeature feature;
-  return closest_point_on_triangle(p, a, b, c, feature);
+                                     const glm::dvec3& c, TriangleFeature& feature) noexcept {
+  return closest_point_in_region<true>(p, a, b, c, &feature);
 }
 
 std::size_t Bvh::memory_bytes() const noexcept {
@@ -315,37 +340,23 @@ BvhHit Bvh::first_hit(const glm::dvec3& from, const glm::dvec3& to, Faces faces,
 BvhHit Bvh::first_hit_around(const glm::dvec3& from, const glm::dvec3& to, std::uint32_t primitive,
                              const glm::dvec3& vertex, double start_tolerance_mm,
                              ObjectMask seen) const noexcept {
-  constexpr int max_around = 64;
-  const auto& first = triangles_[primitive].vertices;
-  int at = 0;
-  while (at < 3 && glm::dvec3(first[std::size_t(at)]) != vertex) ++at;
-  if (at == 3) return {};
-  const glm::vec3 centre = first[std::size_t(at)];
+  std::array<std::uint32_t, 64> around;
+  const std::size_t count = faces_around(primitive, vertex, around);
   const glm::dvec3 d = to - from;
   double best_t = 2.0;  // above any segment parameter
   std::uint32_t best = 0;
-  std::uint32_t current = primitive;
-  for (int step = 0; step < max_around; ++step) {
+  for (std::size_t i = 0; i < count; ++i) {
     double t;
-    if (cross_triangle(triangles_[current], from, d, Faces::front, start_tolerance_mm, t) &&
-        (t < best_t || (t == best_t && current < best)) && primitive_seen(seen, current)) {
+    if (cross_triangle(triangles_[around[i]], from, d, Faces::front, start_tolerance_mm, t) &&
+        (t < best_t || (t == best_t && around[i] < best)) && primitive_seen(seen, around[i])) {
       best_t = t;
-      best = current;
-    }
-    // Across the edge from the vertex to the next corner; the triangle there holds the vertex bit for
-    // bit (the build shares world vertices).
-    current = neighbour(current, at);
-    if (current == no_neighbour) return {};
-    const auto& corners = triangles_[current].vertices;
-    at = corners[0] == centre ? 0 : corners[1] == centre ? 1 : 2;
-    if (current == primitive) {
-      if (best_t > 1.0) return {};
-      BvhHit hit = make_hit(best, from + d * best_t);
-      hit.t = float(best_t);
-      return hit;
+      best = around[i];
     }
   }
-  return {};
+  if (best_t > 1.0) return {};
+  BvhHit hit = make_hit(best, from + d * best_t);
+  hit.t = float(best_t);
+  return hit;
 }
 
 std::size_t Bvh::faces_around(std::uint32_t primitive, const glm::dvec3& vertex,
