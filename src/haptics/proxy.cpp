@@ -132,14 +132,14 @@ Candidate resting_on(const Bvh& bvh, std::uint32_t primitive, double epsilon) no
 constexpr std::size_t max_faces_round_vertex = 16;
 
 // A search that reaches a vertex with the HIP behind the surface there: the point of the faces round
-// the vertex nearest the HIP is where the proxy rests, when it lies among them (not on their far
-// edges), lifted by the surface epsilon: on a face, over it; in a valley between two, where their
-// planes meet; on a ridge or at the vertex, over the face it is reached on. Going round those faces one
-// at a time took the search 10 steps a tick at the vertices of a sulcus's floor of the phantom brain
-// (docs/design.md, "tenth step"). False when the faces do not close round the vertex or their nearest
-// point lies on their far edges (the surface comes nearer beyond them); otherwise `c` and `count` hold
-// the planes it rests on, `point` where, and `inside_face` whether that is inside a face (not on an
-// edge or the vertex, where a face of something else that it touches may come nearer).
+// the vertex nearest the HIP is where the proxy rests, lifted by the surface epsilon over the face it
+// lies on, or in a valley between two faces where their raised planes meet. (On their far edges too: a
+// face beyond that comes nearer is found by the faces-near query that follows a rest on an edge or a
+// corner.) Going round those faces one at a time took the search 10 steps a tick at a vertex of a
+// sulcus's floor of the phantom brain (docs/design.md, "tenth step"). False when the faces do not
+// close round the vertex or the HIP is not behind each plane it would rest on; otherwise `c` and
+// `count` hold those planes, `point` where it rests, and `inside_face` whether that is inside a face
+// (not on an edge or a corner, where a face of something else that it touches may come nearer).
 bool rest_round_vertex(const Bvh& bvh, std::uint32_t face, const glm::dvec3& vertex, const glm::dvec3& hip,
                        double epsilon, double tolerance, Candidate* c, int& count, glm::dvec3& point,
                        bool& inside_face) noexcept {
@@ -168,12 +168,10 @@ bool rest_round_vertex(const Bvh& bvh, std::uint32_t face, const glm::dvec3& ver
       point = q;
     }
   }
-  if (on == TriangleFeature::b || on == TriangleFeature::c || on == TriangleFeature::bc) return false;
+  // Over the face it lies on (at the vertex, the face it is reached on: the first of the nearest).
   c[0] = resting_on(bvh, around[nearest_face], epsilon);
   count = 1;
-  if (on == TriangleFeature::a) {  // the vertex: over the face it is reached on
-    c[0] = resting_on(bvh, face, epsilon);
-  } else if (on == TriangleFeature::ab || on == TriangleFeature::ac) {
+  if (on == TriangleFeature::ab || on == TriangleFeature::ac) {
     // On the edge it shares with the next face round (ab) or the one before (ac): a valley when the
     // other face's far corner lies in front of this one's plane.
     const std::size_t other = on == TriangleFeature::ab ? nearest_face + 1 : nearest_face + faces - 1;
