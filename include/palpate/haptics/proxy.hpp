@@ -13,7 +13,9 @@
 // free space when the HIP is in front of that face. At a vertex, or where the mesh gives no face across
 // (a border, a split vertex), the proxy looks from there toward the HIP (from a vertex, among the faces
 // around it first: Bvh::first_hit_around): a clear view means the HIP is outside and reachable
-// (contact ends); another face in view takes over. So the proxy slides
+// (contact ends); at a vertex with the HIP behind the faces round it, the proxy rests where those
+// faces come nearest the HIP (Bvh::faces_around), when the way there is free; otherwise another face
+// in view takes over. So the proxy slides
 // over convex edges and vertices, settles on an edge or vertex that is the surface's nearest point
 // (handed back to where it came from, it stops), and meets a concave neighbour as a wall on its walk.
 // A tick takes at most `max_iterations` steps; a search cut short resumes the next tick (a tip
