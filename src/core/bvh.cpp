@@ -116,10 +116,8 @@ glm::dvec3 closest_point_in_region(const glm::dvec3& p, const glm::dvec3& a, con
     name(TriangleFeature::a);
     return a;
   }
-  {
-    name(TriangleFeature::face);
-    return a + ab * (vb / denominator) + ac * (vc / denominator);
-  }
+  name(TriangleFeature::face);
+  return a + ab * (vb / denominator) + ac * (vc / denominator);
 }
 
 }  // namespace
