@@ -191,6 +191,20 @@ bool rest_round_vertex(const Bvh& bvh, std::uint32_t face, const glm::dvec3& ver
   return true;
 }
 
+// The corner the faces `c` all share, bit for bit: false when they share none.
+bool shared_corner(const Bvh& bvh, const Candidate* c, int count, glm::dvec3& corner) noexcept {
+  for (const glm::vec3& v : bvh.triangle(c[0].primitive).vertices) {
+    if (std::all_of(c + 1, c + count, [&](const Candidate& k) {
+          const auto& w = bvh.triangle(k.primitive).vertices;
+          return w[0] == v || w[1] == v || w[2] == v;
+        })) {
+      corner = glm::dvec3(v);
+      return true;
+    }
+  }
+  return false;
+}
+
 // The proxy's neighbourhood in the BVH: a box 0.7 of its face's sizes either side (0.26 µs at the
 // median and 1.5 µs at p99 at 10 M triangles, between ticks). Its casts then test the 6-14
 // leaves listed there side by side instead of walking the tree's chain of dependent box tests
@@ -363,8 +377,11 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   };
 
   // At a vertex with the HIP behind the faces round it: the proxy rests where they come nearest the
-  // HIP, when that is among them and the way there is free. None when it did not move there.
-  enum class Rest { none, inside_face, at_edge_or_vertex };
+  // HIP, when that is among them and there is a free way there: straight, or by the vertex (over it on
+  // the planes it will rest on: out of a pocket at the vertex into a valley beyond a ridge). Resting on
+  // an edge or a corner, a face of something else it touches may come nearer: it steps onto that face
+  // and the search goes on.
+  enum class Rest { none, rested, stepped_on };
   const auto rest_round = [&](const glm::dvec3& vertex) {
     Candidate resting[2];
     int resting_count = 0;
@@ -373,16 +390,31 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
     if (!rest_round_vertex(bvh, c[0].primitive, vertex, hip, epsilon, tolerance, resting, resting_count, rest,
                            inside_face))
       return Rest::none;
-    if (rest != p && !bvh.clear_above(resting[0].primitive, p, rest) &&
-        bvh.first_hit(p, rest, Faces::front, tolerance, touchable, near).hit())
-      return Rest::none;
+    const auto free_way = [&](const glm::dvec3& from, const glm::dvec3& to) {
+      return from == to || bvh.clear_above(resting[0].primitive, from, to) ||
+             !bvh.first_hit(from, to, Faces::front, tolerance, touchable, near).hit();
+    };
+    if (!free_way(p, rest)) {
+      const Solution over = solve(resting, resting_count, vertex, tolerance);
+      if (!over.found || !free_way(p, over.point) || !free_way(over.point, rest)) return Rest::none;
+    }
     p = rest;
     count = resting_count;
     std::copy(resting, resting + count, c);
     last_primitive = c[0].primitive;
     handed_over = false;
-    return inside_face ? Rest::inside_face : Rest::at_edge_or_vertex;
+    if (!inside_face &&
+        step_onto_closer_face({c[0].primitive, count > 1 ? c[1].primitive : Bvh::no_neighbour}))
+      return Rest::stepped_on;
+    return Rest::rested;
   };
+  // Planes whose corner lies past the end of their triangles, the proxy within reach of a vertex they
+  // share: it sits in a pocket at the vertex, and the faces round it are taken together as at a walk's
+  // vertex. Otherwise the search dropped the planes, found the same ones again from where it stood and
+  // went round until its cap: 8 steps a tick, 51 ticks of one press-slide deep in a sulcus of the
+  // phantom brain (docs/design.md, "eleventh step"). Once a tick: from the same place it comes out the
+  // same.
+  bool tried_pocket = false;
 
   // A search can go round a loop: a solve's goal past the end of its triangles, found again from
   // there face by face back to the same planes (6 steps, 2.9 mm deep in a sulcus of the phantom brain),
@@ -473,6 +505,14 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
       if (!at_edge) {
         if (count == 0) break;  // free at the HIP
         if (!supported(bvh, c, count, p, epsilon)) {
+          glm::dvec3 vertex;
+          if (!tried_pocket && count >= 2 && shared_corner(bvh, c, count, vertex) &&
+              glm::distance(p, vertex) <= near_reach * epsilon) {
+            tried_pocket = true;
+            const Rest rest = rest_round(vertex);
+            if (rest == Rest::stepped_on) continue;
+            if (rest == Rest::rested) break;
+          }
           // Followed its planes past the end of their triangles: find the constraints again from here.
           count = 0;
           handed_over = false;
@@ -511,12 +551,8 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
       next = bvh.first_hit_around(p, hip, c[0].primitive, nearest, tolerance, touchable);
       // The HIP behind the faces there: the proxy rests where they come nearest it, if it can.
       const Rest rest = next.hit() ? rest_round(nearest) : Rest::none;
-      if (rest != Rest::none) {
-        if (rest == Rest::at_edge_or_vertex &&
-            step_onto_closer_face({c[0].primitive, count > 1 ? c[1].primitive : Bvh::no_neighbour}))
-          continue;
-        break;
-      }
+      if (rest == Rest::stepped_on) continue;
+      if (rest == Rest::rested) break;
     }
     if (!next.hit()) next = bvh.first_hit(p, hip, Faces::front, tolerance, touchable, near);
     if (!next.hit()) {  // nothing in the way: the HIP is outside and reachable

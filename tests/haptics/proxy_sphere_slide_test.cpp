@@ -106,11 +106,45 @@ TEST(SurfacePressSlide, AtASulcusFloorTheProxyRestsWhereTheSurfaceComesNearest) 
   EXPECT_LE(most_steps, 2);
 }
 
-// Deep in the phantom brain's sulci a search can come back to where one of its steps started: a
-// solve's goal past the end of its triangles, found again face by face back to the same planes (3.7 mm
-// deep in cycle 135). From there it would go round the same steps to
-// the cap; it ends where the cap would have ended it, without taking them (checked against the search
-// capped before it comes back, which runs each step: see proxy_move_tester.hpp).
+// 3.7 mm deep in a sulcus of the phantom brain (cycle 135 of the press-slides, from tick 1454), three
+// planes the proxy rests on meet 3.7 um from a vertex they share, past the end of their triangles, and
+// the surface comes nearest the tip 0.5 mm away along a valley beyond a ridge. The proxy rests there,
+// within two epsilons of where the surface comes nearest (the oracle's own search of the mesh), in at
+// most two steps. It used to drop the planes, find the same ones again and go round until the cap,
+// up to 13 steps a tick, staying up to 76 um farther.
+TEST(SurfacePressSlide, InAPocketAtAVertexTheProxyRestsWhereTheSurfaceComesNearest) {
+  if (reduced) GTEST_SKIP() << "136 press-slides on the phantom brain are for optimised, unsanitized builds";
+  Scene scene = testing::scene_of("brain", make_brain_phantom());
+  const testing::MeshOracle oracle(scene);
+  const Bvh bvh = Bvh::build(scene);
+  const auto cycles = testing::surface_press_slides(scene, 0, oracle, {.cycles = 136, .seed = 1});
+  const std::span<const PathSample> samples = cycles[135].samples();
+  ProxyState state;
+  state.reset(samples.front().position_mm);
+  double farthest = 0.0;
+  int most_steps = 0;
+  for (std::size_t k = 0; k <= 1480; ++k) {
+    const Contact contact = proxy_step(state, bvh, samples[k].position_mm);
+    proxy_prepare(state, bvh);
+    if (k < 1454) continue;
+    ASSERT_TRUE(contact.in_contact()) << "tick " << k;
+    EXPECT_FALSE(state.last_cut_short) << "tick " << k;
+    const glm::dvec3 tip(contact.hip_mm);
+    const double beyond = glm::distance(state.position_mm, tip) - oracle.nearest(tip, 10.0).distance_mm;
+    farthest = std::max(farthest, beyond);
+    most_steps = std::max(most_steps, state.last_iterations);
+  }
+  // Measured: 1.91 um beyond, in the valley where the proxy floats the surface epsilon above two faces.
+  EXPECT_LE(farthest, 2.0 * ProxyParams{}.surface_epsilon_mm);
+  EXPECT_LE(most_steps, 2);
+}
+
+// Deep in the phantom brain's sulci a search can come back to where one of its steps started: planes
+// whose corner lies past the end of their triangles, found again face by face from where the proxy
+// stands (3.4 mm deep in cycle 135, between the two banks of a sulcus, where no vertex's faces hold
+// it). From there it would go round the same steps to the cap; it ends where the cap would have ended
+// it, without taking them (checked against the search capped before it comes back, which runs each
+// step: see proxy_move_tester.hpp).
 TEST(SurfacePressSlide, ASearchThatComesBackEndsWhereTheCapWouldHaveEndedIt) {
   if (reduced) GTEST_SKIP() << "140 press-slides on the phantom brain are for optimised, unsanitized builds";
   Scene scene = testing::scene_of("brain", make_brain_phantom());
@@ -137,15 +171,16 @@ TEST(SurfacePressSlide, ASearchThatComesBackEndsWhereTheCapWouldHaveEndedIt) {
       proxy_prepare(state, bvh);
     }
   }
-  // Measured: 63 ticks of cycle 135 came back, after 513 steps in all (each went round 4 steps).
-  EXPECT_GE(went_round, 60);
-  EXPECT_LE(went_round, 66);
-  EXPECT_LE(steps_going_round, 530);
+  // Measured: 10 ticks of cycle 135 came back (1717 to 1726), after 84 steps in all (each went round 4
+  // steps).
+  EXPECT_GE(went_round, 9);
+  EXPECT_LE(went_round, 11);
+  EXPECT_LE(steps_going_round, 90);
   // The scenario's counts take those ticks as cut short, like the capped ones, and find the proxy clean
   // all the same.
   const testing::ScenarioResult result =
       testing::run_scenario(scene, bvh, std::span(cycles).subspan(first_cycle), 1e3f, &oracle);
-  EXPECT_GE(result.counts->capped_ticks, 60u);
+  EXPECT_GE(result.counts->capped_ticks, 9u);
   EXPECT_EQ(result.counts->pop_through_steps + result.counts->inward_force_steps +
                 result.counts->proxy_inside_steps + result.counts->stuck_cycles,
             0u);

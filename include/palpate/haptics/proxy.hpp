@@ -7,15 +7,16 @@
 // the BVH (continuous collision, so a fast move through a thin plate is stopped at the plate); each
 // triangle it runs into adds its plane as a constraint. With two or three planes (a concave crease or
 // corner) the goal is the point nearest the HIP on their free side, by an exact active-set solve; if
-// that leads past the end of their triangles, the constraints are found again from there. On a lone
+// that leads past the end of their triangles, the constraints are found again from there (at a vertex
+// they share, the faces round it are taken together first, as below). On a lone
 // face the goal is the nearest point of the triangle itself (raised off it); when that lies on its
 // edge, the face across the edge (Bvh::neighbour) takes over and the walk goes on over it, or on into
 // free space when the HIP is in front of that face. At a vertex, or where the mesh gives no face across
 // (a border, a split vertex), the proxy looks from there toward the HIP (from a vertex, among the faces
 // around it first: Bvh::first_hit_around): a clear view means the HIP is outside and reachable
 // (contact ends); at a vertex with the HIP behind the faces round it, the proxy rests where those
-// faces come nearest the HIP (Bvh::faces_around), when the way there is free; otherwise another face
-// in view takes over. So the proxy slides
+// faces come nearest the HIP (Bvh::faces_around), when the way there, straight or by the vertex, is
+// free; otherwise another face in view takes over. So the proxy slides
 // over convex edges and vertices, settles on an edge or vertex that is the surface's nearest point
 // (handed back to where it came from, it stops), and meets a concave neighbour as a wall on its walk.
 // A tick takes at most `max_iterations` steps; a search cut short resumes the next tick (a tip
