@@ -75,68 +75,63 @@ TEST(SurfacePressSlide, PhantomBrainGyriAndSulci) {
   expect_clean(*result.counts, cycles, "phantom brain");
 }
 
-// At the floor of a sulcus of the phantom brain (cycle 92 of the press-slides), the tip presses 2.5 mm
-// in at a vertex where two ridges and four valleys meet. At each tick the proxy rests where the surface
-// comes nearest the tip (the oracle's own search of the mesh), in at most two steps. Reaching the
-// vertex, the search used to go round the faces there one at a time, 10 steps a tick, and stop where it
-// started.
-TEST(SurfacePressSlide, AtASulcusFloorTheProxyRestsWhereTheSurfaceComesNearest) {
-  if (reduced) GTEST_SKIP() << "93 press-slides on the phantom brain are for optimised, unsanitized builds";
+// How the proxy rests from tick `first` to tick `last` of press-slide `cycle` on the phantom brain:
+// at most how far beyond where the surface comes nearest the tip (the oracle's own search of the mesh),
+// in at most how many steps a tick, and how many ticks were cut short.
+struct RestsAgainstTheNearest {
+  double farthest_mm = 0.0;
+  int most_steps = 0;
+  int cut_short = 0;
+};
+RestsAgainstTheNearest rests_against_the_nearest(int cycle, std::size_t first, std::size_t last) {
   Scene scene = testing::scene_of("brain", make_brain_phantom());
   const testing::MeshOracle oracle(scene);
   const Bvh bvh = Bvh::build(scene);
-  const auto cycles = testing::surface_press_slides(scene, 0, oracle, {.cycles = 93, .seed = 1});
-  const std::span<const PathSample> samples = cycles[92].samples();
+  const auto cycles = testing::surface_press_slides(scene, 0, oracle, {.cycles = cycle + 1, .seed = 1});
+  const std::span<const PathSample> samples = cycles[std::size_t(cycle)].samples();
   ProxyState state;
   state.reset(samples.front().position_mm);
-  double farthest = 0.0;
-  int most_steps = 0;
-  for (std::size_t k = 0; k <= 900; ++k) {
+  RestsAgainstTheNearest rests;
+  for (std::size_t k = 0; k <= last; ++k) {
     const Contact contact = proxy_step(state, bvh, samples[k].position_mm);
     proxy_prepare(state, bvh);
-    if (k < 805) continue;  // the press starts at the vertex at tick 800
-    ASSERT_TRUE(contact.in_contact()) << "tick " << k;
+    if (k < first) continue;
+    EXPECT_TRUE(contact.in_contact()) << "tick " << k;
     const glm::dvec3 tip(contact.hip_mm);
     const double beyond = glm::distance(state.position_mm, tip) - oracle.nearest(tip, 10.0).distance_mm;
-    farthest = std::max(farthest, beyond);
-    most_steps = std::max(most_steps, state.last_iterations);
+    rests.farthest_mm = std::max(rests.farthest_mm, beyond);
+    rests.most_steps = std::max(rests.most_steps, state.last_iterations);
+    rests.cut_short += state.last_cut_short;
   }
+  return rests;
+}
+
+// At the floor of a sulcus of the phantom brain (cycle 92 of the press-slides), the tip presses 2.5 mm
+// in at a vertex where two ridges and four valleys meet (the press starts there at tick 800). At each
+// tick from 805 the proxy rests where the surface comes nearest the tip, in at most two steps. Reaching
+// the vertex, the search used to go round the faces there one at a time, 10 steps a tick, and stop
+// where it started.
+TEST(SurfacePressSlide, AtASulcusFloorTheProxyRestsWhereTheSurfaceComesNearest) {
+  if (reduced) GTEST_SKIP() << "93 press-slides on the phantom brain are for optimised, unsanitized builds";
+  const RestsAgainstTheNearest rests = rests_against_the_nearest(92, 805, 900);
   // Measured: 1.55 um beyond, in the valley where the proxy floats the surface epsilon above two faces.
-  EXPECT_LE(farthest, 1.6 * ProxyParams{}.surface_epsilon_mm);
-  EXPECT_LE(most_steps, 2);
+  EXPECT_LE(rests.farthest_mm, 1.6 * ProxyParams{}.surface_epsilon_mm);
+  EXPECT_LE(rests.most_steps, 2);
 }
 
 // 3.7 mm deep in a sulcus of the phantom brain (cycle 135 of the press-slides, from tick 1454), three
 // planes the proxy rests on meet 3.7 um from a vertex they share, past the end of their triangles, and
 // the surface comes nearest the tip 0.5 mm away along a valley beyond a ridge. The proxy rests there,
-// within two epsilons of where the surface comes nearest (the oracle's own search of the mesh), in at
-// most two steps. It used to drop the planes, find the same ones again and go round until the cap,
-// up to 13 steps a tick, staying up to 76 um farther.
+// within two epsilons of where the surface comes nearest, in at most two steps, and no tick is cut
+// short. It used to drop the planes, find the same ones again and go round until the cap, up to 13
+// steps a tick, staying up to 76 um farther.
 TEST(SurfacePressSlide, InAPocketAtAVertexTheProxyRestsWhereTheSurfaceComesNearest) {
   if (reduced) GTEST_SKIP() << "136 press-slides on the phantom brain are for optimised, unsanitized builds";
-  Scene scene = testing::scene_of("brain", make_brain_phantom());
-  const testing::MeshOracle oracle(scene);
-  const Bvh bvh = Bvh::build(scene);
-  const auto cycles = testing::surface_press_slides(scene, 0, oracle, {.cycles = 136, .seed = 1});
-  const std::span<const PathSample> samples = cycles[135].samples();
-  ProxyState state;
-  state.reset(samples.front().position_mm);
-  double farthest = 0.0;
-  int most_steps = 0;
-  for (std::size_t k = 0; k <= 1480; ++k) {
-    const Contact contact = proxy_step(state, bvh, samples[k].position_mm);
-    proxy_prepare(state, bvh);
-    if (k < 1454) continue;
-    ASSERT_TRUE(contact.in_contact()) << "tick " << k;
-    EXPECT_FALSE(state.last_cut_short) << "tick " << k;
-    const glm::dvec3 tip(contact.hip_mm);
-    const double beyond = glm::distance(state.position_mm, tip) - oracle.nearest(tip, 10.0).distance_mm;
-    farthest = std::max(farthest, beyond);
-    most_steps = std::max(most_steps, state.last_iterations);
-  }
+  const RestsAgainstTheNearest rests = rests_against_the_nearest(135, 1454, 1480);
   // Measured: 1.91 um beyond, in the valley where the proxy floats the surface epsilon above two faces.
-  EXPECT_LE(farthest, 2.0 * ProxyParams{}.surface_epsilon_mm);
-  EXPECT_LE(most_steps, 2);
+  EXPECT_LE(rests.farthest_mm, 2.0 * ProxyParams{}.surface_epsilon_mm);
+  EXPECT_LE(rests.most_steps, 2);
+  EXPECT_EQ(rests.cut_short, 0);
 }
 
 // Deep in the phantom brain's sulci a search can come back to where one of its steps started: planes
