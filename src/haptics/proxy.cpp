@@ -408,13 +408,7 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
       return Rest::stepped_on;
     return Rest::rested;
   };
-  // Planes whose corner lies past the end of their triangles, the proxy within reach of a vertex they
-  // share: it sits in a pocket at the vertex, and the faces round it are taken together as at a walk's
-  // vertex. Otherwise the search dropped the planes, found the same ones again from where it stood and
-  // went round until its cap: 8 steps a tick, 51 ticks of one press-slide deep in a sulcus of the
-  // phantom brain (docs/design.md, "eleventh step"). Once a tick: from the same place it comes out the
-  // same.
-  bool tried_pocket = false;
+  bool tried_pocket = false;  // the rule tried at a pocket this tick (below, where planes are dropped)
 
   // A search can go round a loop: a solve's goal past the end of its triangles, found again from
   // there face by face back to the same planes (6 steps, 2.9 mm deep in a sulcus of the phantom brain),
@@ -505,6 +499,11 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
       if (!at_edge) {
         if (count == 0) break;  // free at the HIP
         if (!supported(bvh, c, count, p, epsilon)) {
+          // Within reach of a corner the planes share, the proxy sits in a pocket at that vertex: the
+          // faces round it are taken together, as at a walk's vertex. Dropping the planes found the
+          // same ones again from where it stood and went round until the cap: 8 steps a tick, 51 ticks
+          // of one press-slide deep in a sulcus of the phantom brain (docs/design.md, "eleventh step").
+          // Once a tick: from the same place it comes out the same.
           glm::dvec3 vertex;
           if (!tried_pocket && count >= 2 && shared_corner(bvh, c, count, vertex) &&
               glm::distance(p, vertex) <= near_reach * epsilon) {
