@@ -110,12 +110,36 @@ double mean(const std::vector<double>& values) {
   return values.empty() ? 0.0 : sum / double(values.size());
 }
 
-// The rows of a scenario run twice under the same load: the first run's times and counts, and each
+// A scenario under a load: one run unrecorded, two timed, then, with an oracle, its counts from a
+// fourth whose times are dropped (the proxy is deterministic: the same ticks).
+// - The unrecorded run: the first pass over a tree just built, or after the load starts and the
+//   tick's core has spun a second measuring the host, meets the tree cold (at 1 M and 10 M triangles
+//   its p99 was 3 to 5 times the later passes'; under load at 10 M its p99.9 7.5-13.7 us against
+//   2.0-5.5 us). The rows compare loads, not cold and warm.
+// - The counts apart: checked inside a timed run, the oracle's queries (its own grids of the mesh)
+//   ran on the tick's core before each cycle and cooled the caches its first contacts then missed
+//   (the phantom brain's press-slides: 149-250 contact ticks over 3 us checked, 69-108 unchecked, in
+//   one process). docs/benchmarks.md, 2026-12-05 (unchecked).
+struct TimedRuns {
+  testing::ScenarioResult first, again;
+};
+TimedRuns timed_runs(const Prepared& prepared, std::span<const SampledPath> cycles,
+                     const testing::SurfaceOracle* oracle) {
+  TimedRuns runs;
+  testing::run_scenario(prepared.scene, prepared.bvh, cycles, 1e3f, nullptr);
+  runs.first = testing::run_scenario(prepared.scene, prepared.bvh, cycles, 1e3f, nullptr);
+  runs.again = testing::run_scenario(prepared.scene, prepared.bvh, cycles, 1e3f, nullptr);
+  if (oracle)
+    runs.first.counts = testing::run_scenario(prepared.scene, prepared.bvh, cycles, 1e3f, oracle).counts;
+  return runs;
+}
+
+// The rows of a scenario run twice under the same load: the first run's times, the counts, and each
 // tick's shorter time of the two.
 void add_rows(const std::string& scenario, const std::string& mesh, Load load, const HostInterruptions& host,
-              std::size_t triangles, testing::ScenarioResult result, const testing::ScenarioResult& again,
-              bool keep_free, bool keep_contact, Report& report) {
-  testing::ScenarioResult own = testing::shorter_ticks(result, again);  // percentiles() reorders it
+              std::size_t triangles, TimedRuns runs, bool keep_free, bool keep_contact, Report& report) {
+  testing::ScenarioResult& result = runs.first;
+  testing::ScenarioResult own = testing::shorter_ticks(result, runs.again);  // percentiles() reorders it
   if (keep_free) {
     const double free_mean = mean(result.free_tick_us);
     report.rows.push_back({scenario,
@@ -160,10 +184,7 @@ std::vector<Load> loads_of(const Options& options) {
   return loads;
 }
 
-// Each scenario runs once unrecorded before the loads are timed: the first pass over a tree just built
-// meets it cold (at 1M and 10M triangles its p99 was 3 to 5 times the later passes', whichever load
-// came first), and the rows compare loads, not cold and warm. The ticks are timed on core 0 while
-// the load runs on core 1 (where there are two).
+// The ticks are timed on core 0 while the load runs on core 1 (where there are two).
 constexpr int tick_core = 0, load_core = 1;
 
 SceneObject object(std::string name, Mesh mesh, Material material = {}) {
@@ -209,20 +230,15 @@ void bench_table1(const Options& options, Report& report) {
     const testing::MeshOracle oracle(prepared.scene);
     const auto hovers = testing::surface_press_slides(prepared.scene, touched, oracle, hover);
     const auto presses = testing::surface_press_slides(prepared.scene, touched, oracle, press);
-    testing::run_scenario(prepared.scene, prepared.bvh, presses, 1e3f, nullptr);  // warm-up (see below)
     for (const Load load : loads_of(options)) {
       progress(std::string("  load: ") + load_name(load));
       const CoRunner co_runner(load, load_core);
       const PinnedToCore pinned(tick_core);
       const HostInterruptions host = interruptions_now(options, load);
-      add_rows("hover", c.name, load, host, triangles,
-               testing::run_scenario(prepared.scene, prepared.bvh, hovers, 1e3f, nullptr),
-               testing::run_scenario(prepared.scene, prepared.bvh, hovers, 1e3f, nullptr), true, false,
+      add_rows("hover", c.name, load, host, triangles, timed_runs(prepared, hovers, nullptr), true, false,
                report);
-      add_rows("press-slide", c.name, load, host, triangles,
-               testing::run_scenario(prepared.scene, prepared.bvh, presses, 1e3f, &oracle),
-               testing::run_scenario(prepared.scene, prepared.bvh, presses, 1e3f, nullptr), false, true,
-               report);
+      add_rows("press-slide", c.name, load, host, triangles, timed_runs(prepared, presses, &oracle), false,
+               true, report);
     }
   }
 }
@@ -249,20 +265,15 @@ void bench_sphere_slide(const Options& options, Report& report) {
     hover.press_depth_mm = -3.0f;
     hover.depth_amplitude_mm = 1.0f;
     const auto slides = testing::sphere_slide(oracle, slide), hovers = testing::sphere_slide(oracle, hover);
-    testing::run_scenario(prepared.scene, prepared.bvh, slides, 1e3f, nullptr);  // warm-up (see below)
     for (const Load load : loads_of(options)) {
       progress(std::string("  load: ") + load_name(load));
       const CoRunner co_runner(load, load_core);
       const PinnedToCore pinned(tick_core);
       const HostInterruptions host = interruptions_now(options, load);
-      add_rows("sphere-slide", name, load, host, triangles,
-               testing::run_scenario(prepared.scene, prepared.bvh, slides, 1e3f, &oracle),
-               testing::run_scenario(prepared.scene, prepared.bvh, slides, 1e3f, nullptr), false, true,
-               report);
-      add_rows("sphere-hover", name, load, host, triangles,
-               testing::run_scenario(prepared.scene, prepared.bvh, hovers, 1e3f, nullptr),
-               testing::run_scenario(prepared.scene, prepared.bvh, hovers, 1e3f, nullptr), true, false,
-               report);
+      add_rows("sphere-slide", name, load, host, triangles, timed_runs(prepared, slides, &oracle), false,
+               true, report);
+      add_rows("sphere-hover", name, load, host, triangles, timed_runs(prepared, hovers, nullptr), true,
+               false, report);
     }
   }
 }
@@ -381,6 +392,9 @@ void print(const Report& report, const Options& options) {
       "other meshes, on grids of the mesh's triangles, independent of the BVH and the proxy. The Table I "
       "rows\n"
       "walk along the real surface (the brain's slides end where its folds are thinner than the press).\n"
+      "The counts come from a third run of each scenario, untimed, so that the checks never cool the "
+      "timed\n"
+      "ticks' caches (the proxy is deterministic: the same ticks).\n"
       "cut: ticks whose search was cut short (at the proxy's step cap, or coming back to where it had "
       "been);\n"
       "the search resumes the next tick.\n"
