@@ -410,8 +410,7 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
   };
   // Once a tick, the faces round a vertex taken together (below: at a pocket, or wedged twice there).
   bool tried_pocket = false;
-  bool wedged_at_vertex = false;  // wedged this tick within reach of a corner its planes share ...
-  glm::dvec3 wedge_vertex(0.0);   // ... this one
+  bool wedged_at_vertex = false;  // wedged this tick within reach of a corner its planes share
 
   // A search can go round a loop: a solve's goal past the end of its triangles, found again from
   // there face by face back to the same planes (6 steps, 2.9 mm deep in a sulcus of the phantom brain),
@@ -525,23 +524,23 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
         // into one of its own faces. Where the faces only meet at a ridge or saddle vertex, another face
         // of the surface is in view, and the proxy goes on over it (as planes, they would hold it
         // there however far the tip went).
-        // Wedged a second time this tick at the same vertex, within reach of it, the search has gone
-        // round the faces there (a look meets the next face round a micrometre away and takes the proxy
-        // over, and two planes wedge it again) and would go on round until the loop check ended it: 8
-        // or 9 steps where a press of the phantom brain first touches at a vertex (docs/design.md,
-        // "twelfth step"). The faces round it are taken together, as at a walk's vertex; with no free
-        // way to where they come nearest, the proxy stays, as close as it gets.
+        // Wedged a second time this tick within reach of a corner its planes share, the search has gone
+        // round the faces of a vertex (a look meets the next face round a micrometre away and takes the
+        // proxy over, and two planes wedge it again) and would go on round until the loop check ended
+        // it: 8 or 9 steps where a press of the phantom brain first touches at a vertex (docs/design.md,
+        // "twelfth step"; the second wedge was at the first one's vertex in every tick measured). The
+        // faces round it are taken together, as at a walk's vertex; with no free way to where they come
+        // nearest, the proxy stays, as close as it gets.
         glm::dvec3 vertex;
         if (!tried_pocket && shared_corner(bvh, c, count, vertex) &&
             glm::distance(p, vertex) <= near_reach * epsilon) {
-          if (wedged_at_vertex && vertex == wedge_vertex) {
+          if (wedged_at_vertex) {
             tried_pocket = true;
             const Rest rest = rest_round(vertex);
             if (rest == Rest::stepped_on) continue;
             break;
           }
           wedged_at_vertex = true;
-          wedge_vertex = vertex;
         }
         wedged = true;
       }
