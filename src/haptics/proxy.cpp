@@ -409,7 +409,7 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
     return Rest::rested;
   };
   // Once a tick, the faces round a vertex taken together (below: at a pocket, or wedged twice there).
-  bool tried_pocket = false;
+  bool took_faces_round = false;
   bool wedged_at_vertex = false;  // wedged this tick within reach of a corner its planes share
 
   // A search can go round a loop: a solve's goal past the end of its triangles, found again from
@@ -507,9 +507,9 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
           // of one press-slide deep in a sulcus of the phantom brain (docs/design.md, "eleventh step").
           // Once a tick: from the same place it comes out the same.
           glm::dvec3 vertex;
-          if (!tried_pocket && count >= 2 && shared_corner(bvh, c, count, vertex) &&
+          if (!took_faces_round && count >= 2 && shared_corner(bvh, c, count, vertex) &&
               glm::distance(p, vertex) <= near_reach * epsilon) {
-            tried_pocket = true;
+            took_faces_round = true;
             const Rest rest = rest_round(vertex);
             if (rest == Rest::stepped_on) continue;
             if (rest == Rest::rested) break;
@@ -532,10 +532,10 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
         // faces round it are taken together, as at a walk's vertex; with no free way to where they come
         // nearest, the proxy stays, as close as it gets.
         glm::dvec3 vertex;
-        if (!tried_pocket && shared_corner(bvh, c, count, vertex) &&
+        if (!took_faces_round && shared_corner(bvh, c, count, vertex) &&
             glm::distance(p, vertex) <= near_reach * epsilon) {
           if (wedged_at_vertex) {
-            tried_pocket = true;
+            took_faces_round = true;
             const Rest rest = rest_round(vertex);
             if (rest == Rest::stepped_on) continue;
             break;
