@@ -408,7 +408,11 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
       return Rest::stepped_on;
     return Rest::rested;
   };
-  // Once a tick, the faces round a vertex taken together (below: at a pocket, or wedged twice there).
+  // A corner all the planes share, within reach of the proxy: where the faces round a vertex may be
+  // taken together (below: at a pocket, or wedged twice there), once a tick.
+  const auto shared_corner_in_reach = [&](glm::dvec3& vertex) {
+    return shared_corner(bvh, c, count, vertex) && glm::distance(p, vertex) <= near_reach * epsilon;
+  };
   bool took_faces_round = false;
   bool wedged_at_vertex = false;  // wedged this tick within reach of a corner its planes share
 
@@ -507,8 +511,7 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
           // of one press-slide deep in a sulcus of the phantom brain (docs/design.md, "eleventh step").
           // Once a tick: from the same place it comes out the same.
           glm::dvec3 vertex;
-          if (!took_faces_round && count >= 2 && shared_corner(bvh, c, count, vertex) &&
-              glm::distance(p, vertex) <= near_reach * epsilon) {
+          if (!took_faces_round && count >= 2 && shared_corner_in_reach(vertex)) {
             took_faces_round = true;
             const Rest rest = rest_round(vertex);
             if (rest == Rest::stepped_on) continue;
@@ -532,8 +535,7 @@ Contact proxy_step(ProxyState& state, const Bvh& bvh, glm::vec3 hip_mm, const Pr
         // faces round it are taken together, as at a walk's vertex; with no free way to where they come
         // nearest, the proxy stays, as close as it gets.
         glm::dvec3 vertex;
-        if (!took_faces_round && shared_corner(bvh, c, count, vertex) &&
-            glm::distance(p, vertex) <= near_reach * epsilon) {
+        if (!took_faces_round && shared_corner_in_reach(vertex)) {
           if (wedged_at_vertex) {
             took_faces_round = true;
             const Rest rest = rest_round(vertex);
